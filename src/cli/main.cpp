@@ -1,0 +1,59 @@
+// weir's command line: `weir run`, `weir info`.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "cli/commands.h"
+#include "scene/scene.h"
+
+int main(int argc, char** argv) {
+    using namespace weir;
+    CLI::App app{"weir: SPH fluid animation on CPU and NVIDIA GPUs", "weir"};
+    app.set_version_flag("--version", std::string(WEIR_VERSION));
+    app.require_subcommand(1);
+
+    RunOptions run;
+    std::string scenes;
+    for (const std::string& name : builtinSceneNames()) {
+        scenes += (scenes.empty() ? "" : ", ") + name;
+    }
+    CLI::App* runCmd = app.add_subcommand("run", "Simulate a scene and write particle frames");
+    runCmd->add_option("scene", run.scene,
+                       "Scene JSON file or built-in scene (" + scenes + "); default dam_break");
+    runCmd->add_option("--backend", run.backend, "auto (GPU if present), cuda or cpu")
+        ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
+        ->capture_default_str();
+    runCmd->add_option("--neighbours", run.neighbours,
+                       "grid (paper §6.2, O(N)) or brute (O(N^2), for comparison)")
+        ->check(CLI::IsMember({"grid", "brute"}))
+        ->capture_default_str();
+    runCmd->add_option("--particles,-n", run.particles, "Particle count (overrides the scene)")
+        ->check(CLI::Range(std::int64_t(1), std::int64_t(2147483647)));
+    runCmd->add_option("--frames", run.frames, "Stop after this many frames (default: duration)")
+        ->check(CLI::Range(std::int64_t(0), std::int64_t(1) << 40));
+    runCmd->add_option("--out,-o", run.outDir, "Output directory (default out/<scene name>)");
+    runCmd->add_option("--format", run.format, "Frame format: vtu (+ .pvd), ply or csv")
+        ->check(CLI::IsMember({"vtu", "ply", "csv"}))
+        ->capture_default_str();
+    runCmd->add_flag("--explain", run.explain, "Print the derived parameters and why");
+    runCmd->add_flag("--quiet,-q", run.quiet, "No progress line");
+
+    app.add_subcommand("info", "Show the build, the backends and the GPU found");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        return kExitUsage;
+    }
+    if (runCmd->parsed()) {
+        return runCommand(run);
+    }
+    return infoCommand();
+}

@@ -1,0 +1,62 @@
+// Progress display for long runs.
+#include "cli/progress.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace weir {
+
+std::string formatDuration(double seconds) {
+    if (!std::isfinite(seconds) || seconds < 0) {
+        return "--:--";
+    }
+    long s = long(seconds + 0.5);
+    char buf[32];
+    if (s >= 3600) {
+        std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+    } else {
+        std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
+    }
+    return buf;
+}
+
+Progress::Progress(std::int64_t totalFrames, bool quiet)
+    : total_(totalFrames),
+      quiet_(quiet),
+      live_(isatty(fileno(stderr)) != 0),
+      start_(std::chrono::steady_clock::now()) {}
+
+double Progress::elapsedSeconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void Progress::update(std::int64_t frame, double simTime, long long steps) {
+    if (quiet_) {
+        return;
+    }
+    double elapsed = elapsedSeconds();
+    double stepsPerSecond = elapsed > 0 ? double(steps) / elapsed : 0;
+    double eta = frame > 0 ? elapsed * double(total_ - frame) / double(frame) : NAN;
+    char line[200];
+    std::snprintf(line, sizeof line, "frame %lld/%lld  t = %.3f s  %.0f steps/s  elapsed %s  ETA %s",
+                  (long long)frame, (long long)total_, simTime, stepsPerSecond,
+                  formatDuration(elapsed).c_str(), formatDuration(eta).c_str());
+    if (live_) {
+        std::fprintf(stderr, "\r%s\033[K", line);
+        lineOpen_ = true;
+    } else {
+        std::fprintf(stderr, "%s\n", line);
+    }
+    std::fflush(stderr);
+}
+
+void Progress::finish() {
+    if (lineOpen_) {
+        std::fprintf(stderr, "\n");
+        lineOpen_ = false;
+    }
+}
+
+}  // namespace weir

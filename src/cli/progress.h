@@ -1,0 +1,29 @@
+// A live progress line on a terminal (frame, simulated time, steps/s, ETA), log lines otherwise.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+namespace weir {
+
+class Progress {
+   public:
+    Progress(std::int64_t totalFrames, bool quiet);
+    // Reports that `frame` of totalFrames is written, at simulated time t after `steps` steps.
+    void update(std::int64_t frame, double simTime, long long steps);
+    // Ends the live line (if any) so that later output starts on a fresh line.
+    void finish();
+    double elapsedSeconds() const;
+
+   private:
+    std::int64_t total_;
+    bool quiet_;
+    bool live_;
+    bool lineOpen_ = false;
+    std::chrono::steady_clock::time_point start_;
+};
+
+std::string formatDuration(double seconds);
+
+}  // namespace weir

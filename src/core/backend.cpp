@@ -1,0 +1,53 @@
+// Backend names and detection of a usable CUDA device.
+#include "core/backend.h"
+
+#include <stdexcept>
+
+#include "core/exec_cpu.h"
+
+namespace weir {
+
+#if defined(WEIR_HAS_CUDA)
+bool probeCudaDevice(std::string* description);  // core/exec_cuda.cu
+#endif
+
+Backend parseBackend(const std::string& name) {
+    if (name == "cpu") {
+        return Backend::Cpu;
+    }
+    if (name == "cuda") {
+        return Backend::Cuda;
+    }
+    if (name == "auto") {
+        return cudaDeviceAvailable() ? Backend::Cuda : Backend::Cpu;
+    }
+    throw std::invalid_argument("unknown backend '" + name + "': allowed are auto, cuda, cpu");
+}
+
+const char* backendName(Backend backend) { return backend == Backend::Cuda ? "cuda" : "cpu"; }
+
+bool cudaDeviceAvailable() {
+#if defined(WEIR_HAS_CUDA)
+    static const bool available = probeCudaDevice(nullptr);
+    return available;
+#else
+    return false;
+#endif
+}
+
+std::string describeBackend(Backend backend) {
+    if (backend == Backend::Cpu) {
+        return CpuExec().deviceName();
+    }
+#if defined(WEIR_HAS_CUDA)
+    std::string description;
+    if (probeCudaDevice(&description)) {
+        return description;
+    }
+    return "no CUDA device visible";
+#else
+    return "this weir was built without CUDA";
+#endif
+}
+
+}  // namespace weir

@@ -1,0 +1,19 @@
+// Which machine runs the step: all CPU cores (OpenMP) or an NVIDIA GPU (CUDA).
+#pragma once
+
+#include <string>
+
+namespace weir {
+
+enum class Backend { Cpu, Cuda };
+
+// Parses "cpu", "cuda" or "auto" (auto: CUDA when a GPU is present, else CPU).
+Backend parseBackend(const std::string& name);
+const char* backendName(Backend backend);
+
+// True when this binary has the CUDA backend and a CUDA device is visible.
+bool cudaDeviceAvailable();
+// Human-readable description of the device of a backend ("NVIDIA H100 80GB HBM3, 132 SMs, ...").
+std::string describeBackend(Backend backend);
+
+}  // namespace weir

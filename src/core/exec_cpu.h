@@ -1,0 +1,90 @@
+// The CPU backend's primitives: parallelFor over OpenMP, radix sort, scan, host buffers.
+#pragma once
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "core/config.h"
+#include "core/stage_timer.h"
+
+namespace weir {
+
+// Host memory of n elements; same interface as DeviceBuffer.
+template <class T>
+class HostBuffer {
+   public:
+    HostBuffer() = default;
+    explicit HostBuffer(std::size_t n) : data_(n) {}
+    void resize(std::size_t n) { data_.resize(n); }
+    std::size_t size() const { return data_.size(); }
+    T* data() { return data_.data(); }
+    const T* data() const { return data_.data(); }
+    void swap(HostBuffer& other) noexcept { data_.swap(other.data_); }
+
+   private:
+    std::vector<T> data_;
+};
+
+class CpuExec {
+   public:
+    template <class T>
+    using Buffer = HostBuffer<T>;
+    static constexpr bool isDevice = false;
+
+    // Runs f(i) for i in [0, n) on all cores.
+    template <class F>
+    void forEach(Index n, F f) const {
+#pragma omp parallel for schedule(static)
+        for (Index i = 0; i < n; ++i) {
+            f(i);
+        }
+    }
+
+    // Stable sort of (key, value) pairs by the low keyBits bits of the key (LSD radix sort).
+    void sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* valuesIn, Index* valuesOut,
+                   Index n, int keyBits);
+    // out[i] = in[0] + ... + in[i]; in and out may alias.
+    void inclusiveScan(const Index* in, Index* out, Index n);
+
+    template <class T>
+    void upload(Buffer<T>& dst, const T* src, std::size_t n) const {
+        dst.resize(n);
+        std::copy(src, src + n, dst.data());
+    }
+    template <class T>
+    void download(const Buffer<T>& src, T* dst, std::size_t n) const {
+        std::copy(src.data(), src.data() + n, dst);
+    }
+    template <class T>
+    T readOne(const Buffer<T>& src, std::size_t index) const {
+        return src.data()[index];
+    }
+    template <class T>
+    void writeOne(Buffer<T>& dst, std::size_t index, const T& value) const {
+        dst.data()[index] = value;
+    }
+    void synchronize() const {}
+
+    // Stage timing: the CPU is synchronous, so a steady clock around the stage is exact.
+    void stageBegin(const char* stage);
+    void stageEnd(const char* stage);
+    void collectTimes(StageTimes& into);
+    bool timing = false;
+
+    std::string deviceName() const;
+    std::size_t freeMemoryBytes() const;
+
+   private:
+    std::vector<CellKey> sortKeysScratch_;
+    std::vector<Index> sortValuesScratch_;
+    std::vector<std::size_t> histogram_;
+    std::chrono::steady_clock::time_point stageStart_;
+    std::vector<std::pair<std::string, double>> pending_;
+};
+
+}  // namespace weir

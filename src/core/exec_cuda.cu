@@ -1,0 +1,120 @@
+// CUDA primitives: CUB radix sort and scan with persistent scratch, event timing, device info.
+#include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_scan.cuh>
+
+#include <sstream>
+
+#include "core/exec_cuda.cuh"
+
+namespace weir {
+
+CudaExec::CudaExec() { WEIR_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking)); }
+
+CudaExec::~CudaExec() {
+    for (cudaEvent_t e : eventPool_) {
+        cudaEventDestroy(e);
+    }
+    if (stream_ != nullptr) {
+        cudaStreamDestroy(stream_);
+    }
+}
+
+void CudaExec::sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* valuesIn,
+                         Index* valuesOut, Index n, int keyBits) {
+    std::size_t bytes = 0;
+    WEIR_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keysIn, keysOut, valuesIn,
+                                                    valuesOut, n, 0, keyBits, stream_));
+    if (sortTemp_.size() < bytes) {
+        sortTemp_.resize(bytes);
+    }
+    bytes = sortTemp_.size();
+    WEIR_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(sortTemp_.data(), bytes, keysIn, keysOut,
+                                                    valuesIn, valuesOut, n, 0, keyBits, stream_));
+}
+
+void CudaExec::inclusiveScan(const Index* in, Index* out, Index n) {
+    std::size_t bytes = 0;
+    WEIR_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, bytes, in, out, n, stream_));
+    if (scanTemp_.size() < bytes) {
+        scanTemp_.resize(bytes);
+    }
+    bytes = scanTemp_.size();
+    WEIR_CUDA_CHECK(cub::DeviceScan::InclusiveSum(scanTemp_.data(), bytes, in, out, n, stream_));
+}
+
+void CudaExec::download1(void* dst, const void* src, std::size_t bytes) {
+    WEIR_CUDA_CHECK(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToHost, stream_));
+    WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+}
+
+cudaEvent_t CudaExec::takeEvent() {
+    if (eventsUsed_ == eventPool_.size()) {
+        cudaEvent_t e;
+        WEIR_CUDA_CHECK(cudaEventCreate(&e));
+        eventPool_.push_back(e);
+    }
+    return eventPool_[eventsUsed_++];
+}
+
+void CudaExec::stageBegin(const char*) {
+    if (timing) {
+        openEvent_ = takeEvent();
+        WEIR_CUDA_CHECK(cudaEventRecord(openEvent_, stream_));
+    }
+}
+
+void CudaExec::stageEnd(const char* stage) {
+    if (timing) {
+        cudaEvent_t end = takeEvent();
+        WEIR_CUDA_CHECK(cudaEventRecord(end, stream_));
+        pending_.push_back({stage, {openEvent_, end}});
+    }
+}
+
+void CudaExec::collectTimes(StageTimes& into) {
+    if (!pending_.empty()) {
+        WEIR_CUDA_CHECK(cudaEventSynchronize(pending_.back().second.second));
+    }
+    for (auto& [stage, events] : pending_) {
+        float ms = 0;
+        WEIR_CUDA_CHECK(cudaEventElapsedTime(&ms, events.first, events.second));
+        into.add(stage, ms);
+    }
+    pending_.clear();
+    eventsUsed_ = 0;
+}
+
+std::string CudaExec::deviceName() const {
+    int device = 0;
+    WEIR_CUDA_CHECK(cudaGetDevice(&device));
+    cudaDeviceProp prop;
+    WEIR_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
+    int driver = 0;
+    cudaDriverGetVersion(&driver);
+    std::ostringstream s;
+    s << prop.name << ", " << prop.multiProcessorCount << " SMs, "
+      << (prop.totalGlobalMem >> 20) << " MiB, compute " << prop.major << "." << prop.minor
+      << ", driver CUDA " << driver / 1000 << "." << (driver % 1000) / 10;
+    return s.str();
+}
+
+std::size_t CudaExec::freeMemoryBytes() const {
+    std::size_t freeBytes = 0, totalBytes = 0;
+    WEIR_CUDA_CHECK(cudaMemGetInfo(&freeBytes, &totalBytes));
+    return freeBytes;
+}
+
+bool probeCudaDevice(std::string* description) {
+    int count = 0;
+    if (cudaGetDeviceCount(&count) != cudaSuccess || count == 0) {
+        cudaGetLastError();  // clear the sticky "no device" error
+        return false;
+    }
+    if (description != nullptr) {
+        CudaExec exec;
+        *description = exec.deviceName();
+    }
+    return true;
+}
+
+}  // namespace weir

@@ -1,0 +1,152 @@
+// The CUDA backend's primitives: a generic one-thread-per-element kernel, CUB sort and scan,
+// device buffers, and CUDA-event stage timing.
+#pragma once
+
+#include <cuda_runtime.h>
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/check.h"
+#include "core/config.h"
+#include "core/stage_timer.h"
+
+namespace weir {
+
+// Owning device memory, move-only. resize() does not keep the contents.
+template <class T>
+class DeviceBuffer {
+   public:
+    DeviceBuffer() = default;
+    explicit DeviceBuffer(std::size_t n) { resize(n); }
+    DeviceBuffer(const DeviceBuffer&) = delete;
+    DeviceBuffer& operator=(const DeviceBuffer&) = delete;
+    DeviceBuffer(DeviceBuffer&& o) noexcept { swap(o); }
+    DeviceBuffer& operator=(DeviceBuffer&& o) noexcept {
+        swap(o);
+        return *this;
+    }
+    ~DeviceBuffer() { release(); }
+
+    void resize(std::size_t n) {
+        if (n == size_) {
+            return;
+        }
+        release();
+        if (n > 0) {
+            WEIR_CUDA_CHECK(cudaMalloc(&data_, n * sizeof(T)));
+        }
+        size_ = n;
+    }
+    std::size_t size() const { return size_; }
+    T* data() { return data_; }
+    const T* data() const { return data_; }
+    void swap(DeviceBuffer& o) noexcept {
+        std::swap(data_, o.data_);
+        std::swap(size_, o.size_);
+    }
+
+   private:
+    void release() {
+        if (data_ != nullptr) {
+            cudaFree(data_);
+        }
+        data_ = nullptr;
+        size_ = 0;
+    }
+    T* data_ = nullptr;
+    std::size_t size_ = 0;
+};
+
+template <class F>
+__global__ void forEachKernel(Index n, F f) {
+    Index i = Index(blockIdx.x) * Index(blockDim.x) + Index(threadIdx.x);
+    if (i < n) {
+        f(i);
+    }
+}
+
+class CudaExec {
+   public:
+    template <class T>
+    using Buffer = DeviceBuffer<T>;
+    static constexpr bool isDevice = true;
+    static constexpr int kBlockSize = 256;
+
+    CudaExec();
+    ~CudaExec();
+    CudaExec(const CudaExec&) = delete;
+    CudaExec& operator=(const CudaExec&) = delete;
+
+    // Runs f(i) for i in [0, n), one CUDA thread each, on this backend's stream.
+    template <class F>
+    void forEach(Index n, F f) const {
+        if (n <= 0) {
+            return;
+        }
+        unsigned blocks = unsigned((std::int64_t(n) + kBlockSize - 1) / kBlockSize);
+        forEachKernel<<<blocks, kBlockSize, 0, stream_>>>(n, f);
+        WEIR_CUDA_CHECK(cudaGetLastError());
+#ifndef NDEBUG
+        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+#endif
+    }
+
+    // Stable (key, value) radix sort on the low keyBits bits, by CUB.
+    void sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* valuesIn, Index* valuesOut,
+                   Index n, int keyBits);
+    // Inclusive prefix sum by CUB; in and out may alias.
+    void inclusiveScan(const Index* in, Index* out, Index n);
+
+    template <class T>
+    void upload(Buffer<T>& dst, const T* src, std::size_t n) {
+        dst.resize(n);
+        WEIR_CUDA_CHECK(cudaMemcpyAsync(dst.data(), src, n * sizeof(T), cudaMemcpyHostToDevice,
+                                        stream_));
+        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+    }
+    template <class T>
+    void download(const Buffer<T>& src, T* dst, std::size_t n) {
+        WEIR_CUDA_CHECK(cudaMemcpyAsync(dst, src.data(), n * sizeof(T), cudaMemcpyDeviceToHost,
+                                        stream_));
+        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+    }
+    template <class T>
+    T readOne(const Buffer<T>& src, std::size_t index) {
+        T value;
+        download1(&value, src.data() + index, sizeof(T));
+        return value;
+    }
+    template <class T>
+    void writeOne(Buffer<T>& dst, std::size_t index, const T& value) {
+        WEIR_CUDA_CHECK(cudaMemcpyAsync(dst.data() + index, &value, sizeof(T),
+                                        cudaMemcpyHostToDevice, stream_));
+        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+    }
+    void synchronize() { WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_)); }
+
+    void stageBegin(const char* stage);
+    void stageEnd(const char* stage);
+    // Waits for the recorded events and moves their times into `into`.
+    void collectTimes(StageTimes& into);
+    bool timing = false;
+
+    std::string deviceName() const;
+    std::size_t freeMemoryBytes() const;
+    cudaStream_t stream() const { return stream_; }
+
+   private:
+    void download1(void* dst, const void* src, std::size_t bytes);
+    cudaEvent_t takeEvent();
+
+    cudaStream_t stream_ = nullptr;
+    DeviceBuffer<unsigned char> sortTemp_, scanTemp_;
+    std::vector<cudaEvent_t> eventPool_;
+    std::size_t eventsUsed_ = 0;
+    cudaEvent_t openEvent_ = nullptr;
+    std::vector<std::pair<std::string, std::pair<cudaEvent_t, cudaEvent_t>>> pending_;
+};
+
+}  // namespace weir

@@ -1,0 +1,222 @@
+// The uniform neighbour grid of paper §6.2, built by sorting, and the brute-force alternative.
+//
+// Build, on either backend: (1) a cell id per particle; (2) a stable radix sort of (id, index);
+// (3) the cell table (id, first particle, count) by a prefix sum over "new cell starts here"
+// flags; (4) the cell-neighbour table, 27 entries per occupied cell (itself and its 26
+// neighbours, -1 where empty), by a parallel binary search over the sorted cell ids.
+#pragma once
+
+#include <algorithm>
+
+#include "core/config.h"
+#include "grid/cell_id.h"
+
+namespace weir {
+
+constexpr int kNeighbourCells = 27;
+
+// Index of the neighbour offset (dx, dy, dz) in a 27-entry row: dx varies fastest, so the three
+// cells (x-1, x, x+1) of one (dy, dz) are adjacent entries, as they are in the sorted cell ids.
+WEIR_HD constexpr int neighbourSlot(int dx, int dy, int dz) {
+    return ((dy + 1) * 3 + (dz + 1)) * 3 + (dx + 1);
+}
+
+// What the density and force stages need of the grid, passed by value to kernels.
+struct GridNeighbours {
+    const Index* particleCell;    // cell-table index of each (sorted) particle
+    const Index* neighbourTable;  // kNeighbourCells entries per cell, -1 where empty
+    const Index* cellStart;       // first particle of each cell
+    const Index* cellCount;       // particles in each cell
+
+    // Calls f(j) for every particle j in the 27 cells around particle i, i itself included.
+    // The cells of one X row are consecutive in the sorted order, so each row is one run.
+    template <class F>
+    WEIR_HD void forEachCandidate(Index i, F&& f) const {
+        const Index* row = neighbourTable + std::size_t(particleCell[i]) * kNeighbourCells;
+        for (int r = 0; r < 9; ++r) {
+            Index a = row[3 * r], b = row[3 * r + 1], c = row[3 * r + 2];
+            Index first = a >= 0 ? a : (b >= 0 ? b : c);
+            if (first < 0) {
+                continue;
+            }
+            Index last = c >= 0 ? c : (b >= 0 ? b : a);
+            Index end = cellStart[last] + cellCount[last];
+            for (Index j = cellStart[first]; j < end; ++j) {
+                f(j);
+            }
+        }
+    }
+};
+
+// O(N^2) search: every particle is a candidate (the paper's CPU and plain GPU columns).
+struct BruteNeighbours {
+    Index count;
+
+    template <class F>
+    WEIR_HD void forEachCandidate(Index, F&& f) const {
+        for (Index j = 0; j < count; ++j) {
+            f(j);
+        }
+    }
+};
+
+// Lower bound of key in sorted keys[0, n).
+WEIR_HD inline Index lowerBound(const CellKey* keys, Index n, CellKey key) {
+    Index lo = 0, hi = n;
+    while (lo < hi) {
+        Index mid = lo + (hi - lo) / 2;
+        if (keys[mid] < key) {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo;
+}
+
+// Grows a buffer to at least n elements, with headroom so that it rarely reallocates.
+template <class Buffer>
+void ensureCapacity(Buffer& buffer, std::size_t n) {
+    if (buffer.size() < n) {
+        buffer.resize(n + n / 4 + 16);
+    }
+}
+
+template <class Exec>
+class NeighbourGrid {
+   public:
+    template <class T>
+    using Buffer = typename Exec::template Buffer<T>;
+
+    explicit NeighbourGrid(const GridSpec& spec) : spec_(spec) {}
+
+    // Sorts particles by cell and builds both tables. Afterwards permutation()[i] is the old index
+    // of the particle that is i-th in cell order; the caller reorders its particle data by it.
+    void build(Exec& exec, const Real* x, const Real* y, const Real* z, Index n) {
+        n_ = n;
+        for (auto* b : {&order_, &sortedOrder_, &particleCell_}) {
+            b->resize(n);
+        }
+        keys_.resize(n);
+        sortedKeys_.resize(n);
+        if (n == 0) {
+            numCells_ = 0;
+            return;
+        }
+        assignCellIds(exec, x, y, z);
+        exec.sortPairs(keys_.data(), sortedKeys_.data(), order_.data(), sortedOrder_.data(), n,
+                       kCellKeyBits);
+        buildCellTable(exec);
+        buildNeighbourTable(exec);
+    }
+
+    // Step 1: cell id and identity index of every particle.
+    void assignCellIds(Exec& exec, const Real* x, const Real* y, const Real* z) {
+        GridSpec spec = spec_;
+        CellKey* keys = keys_.data();
+        Index* order = order_.data();
+        exec.forEach(n_, [=] WEIR_HD(Index i) {
+            keys[i] = spec.keyOf(x[i], y[i], z[i]);
+            order[i] = i;
+        });
+    }
+
+    // Step 3: head flags, their prefix sum (the cell index of each particle), then per cell its
+    // id, first particle and count.
+    void buildCellTable(Exec& exec) {
+        const Index n = n_;
+        const CellKey* keys = sortedKeys_.data();
+        Index* particleCell = particleCell_.data();
+        exec.forEach(n, [=] WEIR_HD(Index i) {
+            particleCell[i] = (i == 0 || keys[i] != keys[i - 1]) ? 1 : 0;
+        });
+        exec.inclusiveScan(particleCell, particleCell, n);
+        numCells_ = exec.readOne(particleCell_, std::size_t(n - 1));
+        ensureCapacity(cellKeys_, numCells_);
+        ensureCapacity(cellStart_, numCells_);
+        ensureCapacity(cellCount_, numCells_);
+        CellKey* cellKeys = cellKeys_.data();
+        Index* cellStart = cellStart_.data();
+        Index* cellCount = cellCount_.data();
+        exec.forEach(n, [=] WEIR_HD(Index i) {
+            Index cell = particleCell[i] - 1;
+            particleCell[i] = cell;
+            bool head = i == 0 || keys[i] != keys[i - 1];
+            bool tail = i == n - 1 || keys[i] != keys[i + 1];
+            if (head) {
+                cellKeys[cell] = keys[i];
+                cellStart[cell] = i;
+            }
+            if (tail) {
+                // The tail knows its cell's end; its head is found by the run's start.
+                cellCount[cell] = i + 1;
+            }
+        });
+        const Index cells = numCells_;
+        exec.forEach(cells, [=] WEIR_HD(Index c) { cellCount[c] -= cellStart[c]; });
+    }
+
+    // Step 4: for each occupied cell, the cell-table index of itself and its 26 neighbours.
+    void buildNeighbourTable(Exec& exec) {
+        const Index cells = numCells_;
+        ensureCapacity(neighbourTable_, std::size_t(cells) * kNeighbourCells);
+        const CellKey* cellKeys = cellKeys_.data();
+        Index* table = neighbourTable_.data();
+        const int nx = spec_.dims[0], ny = spec_.dims[1], nz = spec_.dims[2];
+        exec.forEach(cells, [=] WEIR_HD(Index c) {
+            CellCoord home = decodeCell(cellKeys[c]);
+            Index* row = table + std::size_t(c) * kNeighbourCells;
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dz = -1; dz <= 1; ++dz) {
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        int x = home.x + dx, y = home.y + dy, z = home.z + dz;
+                        Index found = -1;
+                        if (x >= 0 && y >= 0 && z >= 0 && x < nx && y < ny && z < nz) {
+                            CellKey key = encodeCell(x, y, z);
+                            Index at = lowerBound(cellKeys, cells, key);
+                            if (at < cells && cellKeys[at] == key) {
+                                found = at;
+                            }
+                        }
+                        row[neighbourSlot(dx, dy, dz)] = found;
+                    }
+                }
+            }
+        });
+    }
+
+    GridNeighbours view() const {
+        return {particleCell_.data(), neighbourTable_.data(), cellStart_.data(),
+                cellCount_.data()};
+    }
+    const Index* permutation() const { return sortedOrder_.data(); }
+    const GridSpec& spec() const { return spec_; }
+    Index numCells() const { return numCells_; }
+    Index numParticles() const { return n_; }
+
+    // Read access for tests and statistics.
+    const Buffer<CellKey>& sortedKeys() const { return sortedKeys_; }
+    const Buffer<CellKey>& cellKeys() const { return cellKeys_; }
+    const Buffer<Index>& cellStart() const { return cellStart_; }
+    const Buffer<Index>& cellCount() const { return cellCount_; }
+    const Buffer<Index>& neighbourTable() const { return neighbourTable_; }
+    const Buffer<Index>& particleCell() const { return particleCell_; }
+
+    // Bytes of device (or host) memory held by the grid.
+    std::size_t bytesHeld() const {
+        return keys_.size() * sizeof(CellKey) * 1 + sortedKeys_.size() * sizeof(CellKey) +
+               (order_.size() + sortedOrder_.size() + particleCell_.size() + cellStart_.size() +
+                cellCount_.size() + neighbourTable_.size()) *
+                   sizeof(Index) +
+               cellKeys_.size() * sizeof(CellKey);
+    }
+
+   private:
+    GridSpec spec_;
+    Index n_ = 0;
+    Index numCells_ = 0;
+    Buffer<CellKey> keys_, sortedKeys_, cellKeys_;
+    Buffer<Index> order_, sortedOrder_, particleCell_, cellStart_, cellCount_, neighbourTable_;
+};
+
+}  // namespace weir

@@ -1,0 +1,50 @@
+// Müller et al. 2003 smoothing kernels (paper eqs. 2, 4, 5), written in q = r / h so that
+// they stay in float range for any h.
+#pragma once
+
+#include "core/config.h"
+
+namespace weir {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Constant factors of the kernels for one smoothing radius h.
+struct KernelCoefficients {
+    Real h = 1, h2 = 1, invH = 1;
+    Real poly6 = 0;       // 315 / (64 pi h^3):      W(r)      = poly6 * (1 - q^2)^3
+    Real spikyGrad = 0;   // -45 / (pi h^4):         grad W(r) = spikyGrad * (1 - q)^2 * r / |r|
+    Real viscLaplace = 0; // 45 / (pi h^5):          lap W(r)  = viscLaplace * (1 - q)
+
+    static KernelCoefficients forRadius(double h) {
+        KernelCoefficients k;
+        k.h = Real(h);
+        k.h2 = Real(h * h);
+        k.invH = Real(1.0 / h);
+        k.poly6 = Real(315.0 / (64.0 * kPi * h * h * h));
+        k.spikyGrad = Real(-45.0 / (kPi * h * h * h * h));
+        k.viscLaplace = Real(45.0 / (kPi * h * h * h * h * h));
+        return k;
+    }
+};
+
+// poly6 W at squared distance r2 (zero outside the support).
+WEIR_HD inline Real poly6(const KernelCoefficients& k, Real r2) {
+    if (r2 >= k.h2) {
+        return Real(0);
+    }
+    Real t = Real(1) - r2 / k.h2;
+    return k.poly6 * t * t * t;
+}
+
+// Magnitude factor g of the spiky gradient, grad W = g * r_vec (r_vec = x_i - x_j, 0 < r < h).
+WEIR_HD inline Real spikyGradientFactor(const KernelCoefficients& k, Real r) {
+    Real t = Real(1) - r * k.invH;
+    return k.spikyGrad * t * t / r;
+}
+
+// Laplacian of the viscosity kernel at distance r (0 <= r < h).
+WEIR_HD inline Real viscosityLaplacian(const KernelCoefficients& k, Real r) {
+    return k.viscLaplace * (Real(1) - r * k.invH);
+}
+
+}  // namespace weir

@@ -1,0 +1,214 @@
+// The per-particle stages of the SPH step (paper §6.3), written once for CPU and CUDA.
+// Each stage reads whatever it needs and writes only particle i's own outputs.
+#pragma once
+
+#include <cmath>
+
+#include "core/config.h"
+#include "core/vec3.h"
+#include "physics/eos.h"
+#include "physics/kernels.h"
+#include "physics/sph_params.h"
+
+namespace weir {
+
+// Structure-of-arrays particle data, in the grid's cell order.
+struct ParticleView {
+    Real *x, *y, *z;
+    Real *vx, *vy, *vz;
+    Real *ax, *ay, *az;
+    Real *rho, *p;
+    Index count;
+
+    WEIR_HD Vec3 position(Index i) const { return {x[i], y[i], z[i]}; }
+    WEIR_HD Vec3 velocity(Index i) const { return {vx[i], vy[i], vz[i]}; }
+};
+
+struct ObstacleBox {
+    Vec3 min, max;
+};
+struct ObstacleSphere {
+    Vec3 center;
+    Real radius;
+};
+struct ObstacleView {
+    const ObstacleBox* boxes;
+    int boxCount;
+    const ObstacleSphere* spheres;
+    int sphereCount;
+};
+
+// Why a run had to stop. The first particle to fail records itself; the host reads it back.
+enum class FaultCode : int { None = 0, NotFinite = 1, TooFast = 2, Escaped = 3 };
+struct FaultRecord {
+    int code;      // FaultCode
+    int step;      // step number at which it happened
+    int particle;  // index in cell order at that step
+    float value;   // speed, for TooFast
+};
+
+WEIR_HD inline bool claimFault(FaultRecord* record, FaultCode code) {
+#if defined(__CUDA_ARCH__)
+    return atomicCAS(&record->code, 0, int(code)) == 0;
+#else
+    int expected = 0;
+    return __atomic_compare_exchange_n(&record->code, &expected, int(code), false,
+                                       __ATOMIC_RELAXED, __ATOMIC_RELAXED);
+#endif
+}
+
+// Eq. 2 with poly6, and eq. 3: density and pressure of particle i.
+template <class Neighbours>
+WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                      const SphParams& params) {
+    const Real xi = pv.x[i], yi = pv.y[i], zi = pv.z[i];
+    Real sum = 0;
+    nb.forEachCandidate(i, [&](Index j) {
+        Real dx = xi - pv.x[j], dy = yi - pv.y[j], dz = zi - pv.z[j];
+        sum += poly6(params.kernel, dx * dx + dy * dy + dz * dz);
+    });
+    Real rho = params.mass * sum;
+    pv.rho[i] = rho;
+    pv.p[i] = pressureFromDensity(params, rho);
+}
+
+// Eq. 4 (pressure, spiky gradient) and eq. 5 (viscosity, its Laplacian) between i and j:
+// the force density on i, for r_vec = x_i - x_j and 0 < r < h.
+WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r, Real pi, Real pj,
+                              Real rhoj, const Vec3& vi, const Vec3& vj) {
+    Real pressure = -params.mass * (pi + pj) / (Real(2) * rhoj) *
+                    spikyGradientFactor(params.kernel, r);
+    Real viscous = params.viscosity * params.mass / rhoj * viscosityLaplacian(params.kernel, r);
+    return rVec * pressure + (vj - vi) * viscous;
+}
+
+// Acceleration of particle i: (pressure + viscous force density) / rho_i + gravity.
+template <class Neighbours>
+WEIR_HD inline void accelerationAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                   const SphParams& params) {
+    const Vec3 xi = pv.position(i), vi = pv.velocity(i);
+    const Real pi = pv.p[i], h2 = params.kernel.h2;
+    Vec3 force;
+    nb.forEachCandidate(i, [&](Index j) {
+        Vec3 rVec = xi - pv.position(j);
+        Real r2 = lengthSquared(rVec);
+        if (r2 < h2 && r2 > Real(0)) {
+            force += pairForce(params, rVec, std::sqrt(r2), pi, pv.p[j], pv.rho[j], vi,
+                               pv.velocity(j));
+        }
+    });
+    Vec3 a = force / pv.rho[i] + params.gravity;
+    pv.ax[i] = a.x;
+    pv.ay[i] = a.y;
+    pv.az[i] = a.z;
+}
+
+// Removes the part of v along unit normal n that points into the wall, keeping `restitution` of
+// it (bounced back), and `1 - friction` of the tangential part.
+WEIR_HD inline void reflectVelocity(Vec3& v, const Vec3& n, const SphParams& params) {
+    Real vn = dot(v, n);
+    if (vn < 0) {
+        Vec3 tangential = v - n * vn;
+        v = tangential * (Real(1) - params.friction) - n * (vn * params.restitution);
+    }
+}
+
+// The paper's simple collision response: particles are put back on the container walls and off
+// obstacle boxes and spheres, and lose their velocity into the surface.
+WEIR_HD inline void collide(Vec3& x, Vec3& v, const SphParams& params, const ObstacleView& obstacles) {
+    for (int a = 0; a < 3; ++a) {
+        Vec3 n;
+        if (x[a] < params.boxMin[a]) {
+            x[a] = params.boxMin[a];
+            n[a] = 1;
+            reflectVelocity(v, n, params);
+        } else if (x[a] > params.boxMax[a]) {
+            x[a] = params.boxMax[a];
+            n[a] = -1;
+            reflectVelocity(v, n, params);
+        }
+    }
+    for (int b = 0; b < obstacles.boxCount; ++b) {
+        const ObstacleBox box = obstacles.boxes[b];
+        bool inside = x.x > box.min.x && x.x < box.max.x && x.y > box.min.y && x.y < box.max.y &&
+                      x.z > box.min.z && x.z < box.max.z;
+        if (!inside) {
+            continue;
+        }
+        // Leave through the nearest face.
+        int axis = 0;
+        Real best = Real(1e30), side = 1;
+        for (int a = 0; a < 3; ++a) {
+            Real toMin = x[a] - box.min[a], toMax = box.max[a] - x[a];
+            if (toMin < best) {
+                best = toMin;
+                axis = a;
+                side = -1;
+            }
+            if (toMax < best) {
+                best = toMax;
+                axis = a;
+                side = 1;
+            }
+        }
+        x[axis] = side < 0 ? box.min[axis] : box.max[axis];
+        Vec3 n;
+        n[axis] = side;
+        reflectVelocity(v, n, params);
+    }
+    for (int s = 0; s < obstacles.sphereCount; ++s) {
+        const ObstacleSphere sphere = obstacles.spheres[s];
+        Vec3 d = x - sphere.center;
+        Real r2 = lengthSquared(d);
+        if (r2 >= sphere.radius * sphere.radius) {
+            continue;
+        }
+        Real r = std::sqrt(r2);
+        Vec3 n = r > Real(0) ? d / r : Vec3(0, 1, 0);
+        x = sphere.center + n * sphere.radius;
+        reflectVelocity(v, n, params);
+    }
+}
+
+// Time integration (semi-implicit Euler by default; the paper's explicit Euler selectable),
+// collision response, and the blow-up checks.
+WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams& params,
+                                const ObstacleView& obstacles, FaultRecord* fault, int step) {
+    Vec3 x = pv.position(i), v = pv.velocity(i);
+    const Vec3 a(pv.ax[i], pv.ay[i], pv.az[i]);
+    const Real dt = params.timeStep;
+    if (params.integrator == IntegratorKind::SemiImplicitEuler) {
+        v += a * dt;
+        x += v * dt;
+    } else {
+        x += v * dt;
+        v += a * dt;
+    }
+    collide(x, v, params, obstacles);
+
+    const Real speed2 = lengthSquared(v);
+    const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) &&
+                        std::isfinite(speed2);
+    FaultCode code = FaultCode::None;
+    if (!finite) {
+        code = FaultCode::NotFinite;
+    } else if (speed2 > params.maxSpeed * params.maxSpeed) {
+        code = FaultCode::TooFast;
+    } else if (x.x < params.boxMin.x || x.y < params.boxMin.y || x.z < params.boxMin.z ||
+               x.x > params.boxMax.x || x.y > params.boxMax.y || x.z > params.boxMax.z) {
+        code = FaultCode::Escaped;
+    }
+    if (code != FaultCode::None && claimFault(fault, code)) {
+        fault->step = step;
+        fault->particle = i;
+        fault->value = float(std::sqrt(speed2));
+    }
+    pv.x[i] = x.x;
+    pv.y[i] = x.y;
+    pv.z[i] = x.z;
+    pv.vx[i] = v.x;
+    pv.vy[i] = v.y;
+    pv.vz[i] = v.z;
+}
+
+}  // namespace weir

@@ -1,0 +1,486 @@
+// Scene files: reading and validating scene JSON into a Scene, and the built-in scenes.
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+
+#include "scene/embedded_scenes.h"
+
+namespace weir {
+namespace {
+
+using Json = nlohmann::json;
+using Keys = std::initializer_list<std::string_view>;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr const char* kAxisNames[3] = {"x", "y", "z"};
+constexpr const char* kVec3Text = "an array of 3 finite numbers [x, y, z]";
+
+std::string formatNumber(double v) {
+    std::ostringstream out;
+    out << std::setprecision(10) << v;
+    return out.str();
+}
+
+std::string formatVec(const Vec3d& v) {
+    std::ostringstream out;
+    out << std::setprecision(10) << "[" << v.x << ", " << v.y << ", " << v.z << "]";
+    return out.str();
+}
+
+std::string join(const auto& items, std::string_view separator) {
+    std::string out;
+    for (const auto& item : items) {
+        if (!out.empty()) {
+            out.append(separator);
+        }
+        out.append(std::string_view(item));
+    }
+    return out;
+}
+
+// A JSON value as the user wrote it (give or take spacing), for messages; long values are cut.
+std::string asWritten(const Json& value) {
+    std::string text;
+    if (value.is_array()) {
+        std::vector<std::string> items;
+        for (const Json& item : value) {
+            items.push_back(asWritten(item));
+        }
+        text = "[" + join(items, ", ") + "]";
+    } else {
+        text = value.dump();
+    }
+    return text.size() > 80 ? text.substr(0, 77) + "..." : text;
+}
+
+std::size_t editDistance(std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) {
+        row[j] = j;
+    }
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            std::size_t above = row[j];
+            bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                        std::tolower(static_cast<unsigned char>(b[j - 1]));
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+// A numeric rule: a range open or closed at each end, optionally integers only, and its text.
+struct Range {
+    double lo = -kInf, hi = kInf;
+    bool loOpen = false, hiOpen = false;
+    bool integer = false;
+    std::string note;  // appended to the text, e.g. where a bound comes from
+
+    bool contains(double v) const {
+        return std::isfinite(v) && (loOpen ? v > lo : v >= lo) && (hiOpen ? v < hi : v <= hi) &&
+               (!integer || v == std::floor(v));
+    }
+    std::string text() const {
+        std::string kind = integer ? "an integer" : "a number";
+        bool hasLo = lo > -kInf, hasHi = hi < kInf;
+        if (!hasLo && !hasHi) {
+            return "a finite number" + note;
+        }
+        if (hasLo && hasHi && !loOpen && !hiOpen) {
+            return kind + " in [" + formatNumber(lo) + ", " + formatNumber(hi) + "]" + note;
+        }
+        std::string out = kind;
+        if (hasLo) {
+            out += (loOpen ? " > " : " >= ") + formatNumber(lo);
+        }
+        if (hasHi) {
+            out += std::string(hasLo ? " and" : "") + (hiOpen ? " < " : " <= ") + formatNumber(hi);
+        }
+        return out + note;
+    }
+};
+
+Range greaterThan(double lo) {
+    Range range;
+    range.lo = lo;
+    range.loOpen = true;
+    return range;
+}
+Range atLeast(double lo) {
+    Range range;
+    range.lo = lo;
+    return range;
+}
+Range between(double lo, double hi) {
+    Range range;
+    range.lo = lo;
+    range.hi = hi;
+    return range;
+}
+
+const Range kPositive = greaterThan(0);
+
+// Reads one JSON object of a scene file. It knows the object's JSON path ("blocks[1]") and the
+// file's name, so every error names the file, the field, the value as written and what is
+// allowed. Constructing one rejects non-objects and unknown keys (typos) at once.
+class FieldReader {
+   public:
+    FieldReader(const Json& object, std::string path, const std::string& source, Keys allowed)
+        : object_(object), path_(std::move(path)), source_(source) {
+        std::string allowedText = join(allowed, ", ");
+        if (!object.is_object()) {
+            failAt(path_.empty() ? "the top level" : "field '" + path_ + "'", asWritten(object),
+                   "an object with keys " + allowedText);
+        }
+        for (const auto& item : object.items()) {
+            const std::string& key = item.key();
+            if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) {
+                continue;
+            }
+            std::string hint;
+            for (std::string_view candidate : allowed) {
+                if (editDistance(key, candidate) <= 2) {
+                    hint = " (did you mean '" + std::string(candidate) + "'?)";
+                    break;
+                }
+            }
+            fail(pathOf(key), "an unknown key" + hint, "one of: " + allowedText);
+        }
+    }
+
+    std::string pathOf(std::string_view key) const {
+        return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+    }
+    const std::string& path() const { return path_; }
+    const Json* find(std::string_view key) const {
+        auto it = object_.find(key);
+        return it == object_.end() ? nullptr : &*it;
+    }
+    std::string written(std::string_view key) const {
+        const Json* value = find(key);
+        return value ? asWritten(*value) : "missing";
+    }
+    [[noreturn]] void fail(const std::string& field, const std::string& value,
+                           const std::string& allowed) const {
+        failAt("field '" + field + "'", value, allowed);
+    }
+
+    std::optional<double> optionalNumber(std::string_view key, const Range& range) const {
+        const Json* value = find(key);
+        if (!value) {
+            return std::nullopt;
+        }
+        if (!value->is_number() || !range.contains(value->get<double>())) {
+            fail(pathOf(key), asWritten(*value), range.text());
+        }
+        return value->get<double>();
+    }
+    double number(std::string_view key, const Range& range, double fallback) const {
+        return optionalNumber(key, range).value_or(fallback);
+    }
+    double number(std::string_view key, const Range& range) const {
+        require(key, range.text());
+        return *optionalNumber(key, range);
+    }
+
+    Vec3d vec3(std::string_view key, std::optional<Vec3d> fallback = std::nullopt) const {
+        const Json* value = find(key);
+        if (!value) {
+            if (!fallback) {
+                fail(pathOf(key), "missing", kVec3Text);
+            }
+            return *fallback;
+        }
+        bool ok = value->is_array() && value->size() == 3;
+        for (std::size_t i = 0; ok && i < 3; ++i) {
+            ok = (*value)[i].is_number() && std::isfinite((*value)[i].get<double>());
+        }
+        if (!ok) {
+            fail(pathOf(key), asWritten(*value), kVec3Text);
+        }
+        return {(*value)[0].get<double>(), (*value)[1].get<double>(), (*value)[2].get<double>()};
+    }
+
+    bool boolean(std::string_view key, bool fallback) const {
+        const Json* value = find(key);
+        if (!value) {
+            return fallback;
+        }
+        if (!value->is_boolean()) {
+            fail(pathOf(key), asWritten(*value), "true or false");
+        }
+        return value->get<bool>();
+    }
+
+    std::string string(std::string_view key, const std::string& fallback) const {
+        const Json* value = find(key);
+        if (!value) {
+            return fallback;
+        }
+        if (!value->is_string()) {
+            fail(pathOf(key), asWritten(*value), "a string");
+        }
+        return value->get<std::string>();
+    }
+
+    // The object under key; an empty one (all defaults) when the key is absent.
+    FieldReader object(std::string_view key, Keys allowed) const {
+        static const Json kEmpty = Json::object();
+        const Json* value = find(key);
+        return FieldReader(value ? *value : kEmpty, pathOf(key), source_, allowed);
+    }
+
+    // Calls read(FieldReader) for each object of the array under key (absent: none).
+    template <class Read>
+    void forEach(std::string_view key, Keys allowed, Read&& read) const {
+        const Json* value = find(key);
+        if (!value) {
+            return;
+        }
+        if (!value->is_array()) {
+            fail(pathOf(key), asWritten(*value),
+                 "an array of objects with keys " + join(allowed, ", "));
+        }
+        for (std::size_t i = 0; i < value->size(); ++i) {
+            read(FieldReader((*value)[i], pathOf(key) + "[" + std::to_string(i) + "]", source_,
+                             allowed));
+        }
+    }
+
+    void require(std::string_view key, const std::string& allowed) const {
+        if (!find(key)) {
+            fail(pathOf(key), "missing", allowed);
+        }
+    }
+
+   private:
+    [[noreturn]] void failAt(const std::string& where, const std::string& value,
+                             const std::string& allowed) const {
+        throw SceneError("scene '" + source_ + "': " + where + " is " + value + ", must be " +
+                         allowed);
+    }
+
+    const Json& object_;
+    std::string path_;
+    const std::string& source_;
+};
+
+Box readBox(const FieldReader& r) {
+    Box box{r.vec3("min"), r.vec3("max")};
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!(box.min[axis] < box.max[axis])) {
+            r.fail(r.pathOf("max"), r.written("max"),
+                   "greater than min " + r.written("min") + " on every axis (it is not on " +
+                       kAxisNames[axis] + ")");
+        }
+    }
+    return box;
+}
+
+SphereShape readSphere(const FieldReader& r) {
+    return {r.vec3("center"), r.number("radius", kPositive)};
+}
+
+// Fluid must start inside the container: says how far a shape's bounds stick out ("" if not).
+std::string overhang(const Box& bounds, const Box& container) {
+    Vec3d size = container.max - container.min;
+    double tolerance = 1e-9 * std::max({size.x, size.y, size.z});
+    std::vector<std::string> sides;
+    for (int axis = 0; axis < 3; ++axis) {
+        double below = container.min[axis] - bounds.min[axis];
+        double above = bounds.max[axis] - container.max[axis];
+        if (below > tolerance) {
+            sides.push_back(formatNumber(below) + " on -" + kAxisNames[axis]);
+        }
+        if (above > tolerance) {
+            sides.push_back(formatNumber(above) + " on +" + kAxisNames[axis]);
+        }
+    }
+    return join(sides, ", ");
+}
+
+void requireInside(const FieldReader& r, const Box& bounds, const Box& container,
+                   const std::string& value) {
+    std::string out = overhang(bounds, container);
+    if (!out.empty()) {
+        r.fail(r.path(), value,
+               "inside the container " + formatVec(container.min) + " to " +
+                   formatVec(container.max) + " (it sticks out by " + out + ")");
+    }
+}
+
+std::optional<Integrator> integratorByName(const std::string& name) {
+    if (name == "semi-implicit-euler") {
+        return Integrator::SemiImplicitEuler;
+    }
+    if (name == "explicit-euler") {
+        return Integrator::ExplicitEuler;
+    }
+    return std::nullopt;
+}
+
+Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
+                      const std::string& defaultName) {
+    Json root;
+    try {
+        root = Json::parse(jsonText, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+    } catch (const Json::exception& e) {
+        // Drop nlohmann's "[json.exception.parse_error.101] " prefix; keep line and column.
+        std::string what = e.what();
+        std::size_t end = what.find("] ");
+        throw SceneError("scene '" + source + "': invalid JSON: " +
+                         (end == std::string::npos ? what : what.substr(end + 2)));
+    }
+
+    FieldReader top(root, "", source,
+                    {"name", "description", "container", "blocks", "spheres", "obstacles", "fluid",
+                     "particles", "gravity", "time", "walls", "limits"});
+    Scene scene;
+    scene.sourcePath = source;
+    scene.name = top.string("name", defaultName);
+    if (scene.name.empty()) {
+        top.fail("name", "\"\"", "a non-empty string");
+    }
+    scene.description = top.string("description", "");
+
+    top.require("container", "an object {\"min\": [x, y, z], \"max\": [x, y, z]}");
+    scene.container = readBox(top.object("container", {"min", "max"}));
+    const Box& container = scene.container;
+
+    top.forEach("blocks", {"min", "max", "velocity"}, [&](const FieldReader& r) {
+        FluidBlock block{readBox(r), r.vec3("velocity", Vec3d{})};
+        requireInside(r, block.box, container,
+                      "{min " + r.written("min") + ", max " + r.written("max") + "}");
+        scene.blocks.push_back(block);
+    });
+    top.forEach("spheres", {"center", "radius", "velocity"}, [&](const FieldReader& r) {
+        FluidSphere fluid{readSphere(r), r.vec3("velocity", Vec3d{})};
+        const SphereShape& s = fluid.sphere;
+        Vec3d extent{s.radius, s.radius, s.radius};
+        requireInside(r, Box{s.center - extent, s.center + extent}, container,
+                      "{center " + r.written("center") + ", radius " + r.written("radius") + "}");
+        scene.spheres.push_back(fluid);
+    });
+    if (scene.blocks.empty() && scene.spheres.empty()) {
+        top.fail("blocks", top.written("blocks"),
+                 "a non-empty array of fluid blocks unless 'spheres' (" + top.written("spheres") +
+                     ") holds fluid spheres: a scene needs fluid");
+    }
+
+    FieldReader obstacles = top.object("obstacles", {"boxes", "spheres"});
+    obstacles.forEach("boxes", {"min", "max"},
+                      [&](const FieldReader& r) { scene.obstacleBoxes.push_back(readBox(r)); });
+    obstacles.forEach("spheres", {"center", "radius"}, [&](const FieldReader& r) {
+        scene.obstacleSpheres.push_back(readSphere(r));
+    });
+
+    FieldReader fluid = top.object("fluid", {"restDensity", "viscosity", "stiffness",
+                                             "clampNegativePressure"});
+    scene.restDensity = fluid.number("restDensity", kPositive, scene.restDensity);
+    scene.viscosity = fluid.optionalNumber("viscosity", atLeast(0));
+    scene.stiffness = fluid.optionalNumber("stiffness", kPositive);
+    scene.clampNegativePressure =
+        fluid.boolean("clampNegativePressure", scene.clampNegativePressure);
+
+    FieldReader particles = top.object("particles", {"count", "spacing", "smoothingRatio"});
+    if (particles.find("count") && particles.find("spacing")) {
+        top.fail("particles", top.written("particles"),
+                 "an object with at most one of 'count' and 'spacing'");
+    }
+    Range countRange = between(1, 2147483647.0);
+    countRange.integer = true;
+    if (auto count = particles.optionalNumber("count", countRange)) {
+        scene.particleCount = static_cast<std::int64_t>(*count);
+    }
+    scene.spacing = particles.optionalNumber("spacing", kPositive);
+    scene.smoothingRatio =
+        particles.number("smoothingRatio", between(1.2, 5), scene.smoothingRatio);
+
+    scene.gravity = top.vec3("gravity", scene.gravity);
+
+    FieldReader time = top.object("time", {"duration", "frameRate", "timeStep", "integrator"});
+    scene.duration = time.number("duration", kPositive, scene.duration);
+    scene.frameRate = time.number("frameRate", kPositive, scene.frameRate);
+    // A step longer than a frame could not land on frame times.
+    Range stepRange = greaterThan(0);
+    stepRange.hi = 1.0 / scene.frameRate;
+    stepRange.note = " (1 / frameRate)";
+    scene.timeStep = time.optionalNumber("timeStep", stepRange);
+    std::string integrator = time.string("integrator", "semi-implicit-euler");
+    if (auto chosen = integratorByName(integrator)) {
+        scene.integrator = *chosen;
+    } else {
+        time.fail(time.pathOf("integrator"), time.written("integrator"),
+                  "one of \"semi-implicit-euler\", \"explicit-euler\"");
+    }
+
+    FieldReader walls = top.object("walls", {"restitution", "friction"});
+    scene.wallRestitution = walls.number("restitution", between(0, 1), scene.wallRestitution);
+    scene.wallFriction = walls.number("friction", between(0, 1), scene.wallFriction);
+
+    scene.maxSpeed = top.object("limits", {"maxSpeed"}).optionalNumber("maxSpeed", kPositive);
+    return scene;
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& jsonText, const std::string& sourceName) {
+    std::string stem = std::filesystem::path(sourceName).stem().string();
+    return parseSceneNamed(jsonText, sourceName, stem.empty() ? "scene" : stem);
+}
+
+Scene loadScene(const std::string& path) {
+    auto fail = [&](const char* what, int error) {
+        throw SceneError("scene '" + path + "': cannot " + what +
+                         " the file: " + std::generic_category().message(error));
+    };
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                         &std::fclose);
+    if (!file) {
+        fail("open", errno);
+    }
+    std::string text;
+    char buffer[1 << 16];
+    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, file.get())) {
+        text.append(buffer, n);
+    }
+    if (std::ferror(file.get())) {
+        fail("read", errno);  // e.g. a directory: EISDIR
+    }
+    return parseScene(text, path);
+}
+
+Scene builtinScene(const std::string& name) {
+    for (const auto& [stem, text] : embeddedSceneFiles()) {
+        if (stem == name) {
+            return parseSceneNamed(text, "<built-in " + name + ">", name);
+        }
+    }
+    throw SceneError("unknown built-in scene '" + name +
+                     "', available: " + join(builtinSceneNames(), ", "));
+}
+
+std::vector<std::string> builtinSceneNames() {
+    std::vector<std::string> names;
+    for (const auto& entry : embeddedSceneFiles()) {
+        names.push_back(entry.first);
+    }
+    return names;
+}
+
+}  // namespace weir

@@ -1,0 +1,90 @@
+// The scene: what the user asks for (geometry, fluid, resolution, timing), as read from JSON.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/vec3.h"
+
+namespace weir {
+
+// A user-facing error in a scene file. The message names the file, the field (as a JSON
+// path such as "fluid.restDensity" or "blocks[1].max"), the bad value and what is allowed.
+class SceneError : public std::runtime_error {
+   public:
+    using std::runtime_error::runtime_error;
+};
+
+struct Box {
+    Vec3d min, max;
+};
+
+struct SphereShape {
+    Vec3d center;
+    double radius = 0;
+};
+
+struct FluidBlock {
+    Box box;
+    Vec3d velocity;
+};
+
+struct FluidSphere {
+    SphereShape sphere;
+    Vec3d velocity;
+};
+
+enum class Integrator { SemiImplicitEuler, ExplicitEuler };
+
+struct Scene {
+    std::string name = "scene";  // "name", default: file stem
+    std::string sourcePath;      // file it came from ("<built-in NAME>" for built-ins)
+    std::string description;     // "description", free text, optional
+
+    Box container;                          // "container": {"min": [..], "max": [..]}, metres
+    std::vector<FluidBlock> blocks;         // "blocks": [{"min","max","velocity"?}]
+    std::vector<FluidSphere> spheres;       // "spheres": [{"center","radius","velocity"?}]
+    std::vector<Box> obstacleBoxes;         // "obstacles": {"boxes": [{"min","max"}], ...
+    std::vector<SphereShape> obstacleSpheres;  //   "spheres": [{"center","radius"}]}
+
+    // "fluid": {...}
+    double restDensity = 1000.0;         // "restDensity", kg/m^3, > 0
+    std::optional<double> viscosity;     // "viscosity", dynamic mu of eq. 5, Pa s, >= 0; unset: derived
+    std::optional<double> stiffness;     // "stiffness", k of eq. 3, m^2/s^2, > 0; unset: derived
+    // "clampNegativePressure": eq. 3 gives negative pressure where the free surface lacks
+    // neighbours; it pulls surface particles together and throws jets off walls. Clamped by default.
+    bool clampNegativePressure = true;
+
+    // "particles": {"spacing": s} or {"count": n} (exactly one; neither: count 20000)
+    std::optional<double> spacing;             // metres, > 0
+    std::optional<std::int64_t> particleCount; // > 0
+    double smoothingRatio = 2.0;               // "particles.smoothingRatio": h / spacing, in [1.2, 5]
+
+    Vec3d gravity{0.0, -9.81, 0.0};  // "gravity": [gx, gy, gz], m/s^2
+
+    // "time": {...}
+    std::optional<double> timeStep;  // "timeStep", s, > 0; unset: derived (CFL)
+    double duration = 2.0;           // "duration", s, > 0
+    double frameRate = 30.0;         // "frameRate", frames per simulated second, > 0
+    Integrator integrator = Integrator::SemiImplicitEuler;  // "integrator":
+                                                           // "semi-implicit-euler" | "explicit-euler"
+
+    // "walls": {...}
+    double wallRestitution = 0.0;  // "restitution", in [0, 1]: normal speed kept after a bounce
+    double wallFriction = 0.0;     // "friction", in [0, 1]: tangential speed removed on contact
+
+    std::optional<double> maxSpeed;  // "limits.maxSpeed", m/s, > 0; unset: derived
+};
+
+// Reads and validates a scene file; throws SceneError naming file, field, value, allowed range.
+Scene loadScene(const std::string& path);
+// Same for JSON text already in memory; sourceName is used in messages.
+Scene parseScene(const std::string& jsonText, const std::string& sourceName);
+// The built-in scenes, by name ("dam_break", "double_dam_break", "drop_into_pool").
+Scene builtinScene(const std::string& name);
+std::vector<std::string> builtinSceneNames();
+
+}  // namespace weir

@@ -1,0 +1,367 @@
+// Tests for scene files: the shipped scenes, defaults, and one error per validation rule.
+#include "scene/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+namespace weir {
+namespace {
+
+using Json = nlohmann::json;
+
+// Like gmock's HasSubstr, which would need libgmock (the test binary links only gtest).
+::testing::AssertionResult contains(const std::string& text, const std::string& part) {
+    if (text.find(part) != std::string::npos) {
+        return ::testing::AssertionSuccess();
+    }
+    return ::testing::AssertionFailure() << "\"" << text << "\" lacks \"" << part << "\"";
+}
+
+void expectVec(const Vec3d& v, double x, double y, double z) {
+    EXPECT_DOUBLE_EQ(v.x, x);
+    EXPECT_DOUBLE_EQ(v.y, y);
+    EXPECT_DOUBLE_EQ(v.z, z);
+}
+
+// The message of the SceneError that parsing text throws ("" and a test failure if none).
+std::string errorOf(const std::string& text, const std::string& source = "bad.json") {
+    try {
+        parseScene(text, source);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no SceneError for " << text;
+    return "";
+}
+
+// A valid scene that uses every object; each bad case changes one field of it.
+const char* kValidScene = R"({
+    "name": "valid",
+    "description": "every object present",
+    "container": {"min": [0, 0, 0], "max": [1.6, 1.0, 0.6]},
+    "blocks": [{"min": [0, 0, 0], "max": [0.4, 0.6, 0.6], "velocity": [0, 0, 0]}],
+    "spheres": [{"center": [0.8, 0.5, 0.3], "radius": 0.15, "velocity": [0, -1, 0]}],
+    "obstacles": {"boxes": [{"min": [1.0, 0, 0], "max": [1.2, 0.2, 0.6]}],
+                  "spheres": [{"center": [1.4, 0.1, 0.3], "radius": 0.1}]},
+    "fluid": {"restDensity": 998, "viscosity": 0.5, "stiffness": 1000},
+    "particles": {"count": 1000, "smoothingRatio": 2.5},
+    "gravity": [0, -9.81, 0],
+    "time": {"duration": 1.5, "frameRate": 60, "timeStep": 0.0002,
+             "integrator": "explicit-euler"},
+    "walls": {"restitution": 0.3, "friction": 0.1},
+    "limits": {"maxSpeed": 50}
+})";
+
+TEST(Scene, ValidSceneReadsEveryField) {
+    Scene s = parseScene(kValidScene, "valid.json");
+    EXPECT_EQ(s.name, "valid");
+    EXPECT_EQ(s.description, "every object present");
+    EXPECT_EQ(s.sourcePath, "valid.json");
+    expectVec(s.container.max, 1.6, 1.0, 0.6);
+    ASSERT_EQ(s.blocks.size(), 1u);
+    expectVec(s.blocks[0].box.max, 0.4, 0.6, 0.6);
+    ASSERT_EQ(s.spheres.size(), 1u);
+    expectVec(s.spheres[0].sphere.center, 0.8, 0.5, 0.3);
+    EXPECT_DOUBLE_EQ(s.spheres[0].sphere.radius, 0.15);
+    expectVec(s.spheres[0].velocity, 0, -1, 0);
+    ASSERT_EQ(s.obstacleBoxes.size(), 1u);
+    expectVec(s.obstacleBoxes[0].min, 1.0, 0, 0);
+    ASSERT_EQ(s.obstacleSpheres.size(), 1u);
+    EXPECT_DOUBLE_EQ(s.obstacleSpheres[0].radius, 0.1);
+    EXPECT_DOUBLE_EQ(s.restDensity, 998);
+    EXPECT_EQ(s.viscosity, 0.5);
+    EXPECT_EQ(s.stiffness, 1000.0);
+    EXPECT_EQ(s.particleCount, 1000);
+    EXPECT_FALSE(s.spacing);
+    EXPECT_DOUBLE_EQ(s.smoothingRatio, 2.5);
+    expectVec(s.gravity, 0, -9.81, 0);
+    EXPECT_DOUBLE_EQ(s.duration, 1.5);
+    EXPECT_DOUBLE_EQ(s.frameRate, 60);
+    EXPECT_EQ(s.timeStep, 0.0002);
+    EXPECT_EQ(s.integrator, Integrator::ExplicitEuler);
+    EXPECT_DOUBLE_EQ(s.wallRestitution, 0.3);
+    EXPECT_DOUBLE_EQ(s.wallFriction, 0.1);
+    EXPECT_EQ(s.maxSpeed, 50.0);
+}
+
+TEST(Scene, OmittedFieldsTakeDefaults) {
+    Scene s = parseScene(R"({"container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+                             "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}]})",
+                         "some/dir/minimal.json");
+    EXPECT_EQ(s.name, "minimal");  // the file stem
+    EXPECT_EQ(s.description, "");
+    expectVec(s.blocks[0].velocity, 0, 0, 0);
+    EXPECT_TRUE(s.spheres.empty());
+    EXPECT_TRUE(s.obstacleBoxes.empty());
+    EXPECT_TRUE(s.obstacleSpheres.empty());
+    EXPECT_DOUBLE_EQ(s.restDensity, 1000);
+    EXPECT_FALSE(s.viscosity);
+    EXPECT_FALSE(s.stiffness);
+    EXPECT_FALSE(s.particleCount);
+    EXPECT_FALSE(s.spacing);
+    EXPECT_DOUBLE_EQ(s.smoothingRatio, 2.0);
+    expectVec(s.gravity, 0, -9.81, 0);
+    EXPECT_DOUBLE_EQ(s.duration, 2.0);
+    EXPECT_DOUBLE_EQ(s.frameRate, 30);
+    EXPECT_FALSE(s.timeStep);
+    EXPECT_EQ(s.integrator, Integrator::SemiImplicitEuler);
+    EXPECT_DOUBLE_EQ(s.wallRestitution, 0);
+    EXPECT_DOUBLE_EQ(s.wallFriction, 0);
+    EXPECT_FALSE(s.maxSpeed);
+}
+
+TEST(Scene, SpacingInsteadOfCountAndSpheresOnly) {
+    Scene s = parseScene(R"({"container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+                             "spheres": [{"center": [0.5, 0.5, 0.5], "radius": 0.5}],
+                             "particles": {"spacing": 0.01}})",
+                         "s.json");
+    EXPECT_EQ(s.spacing, 0.01);
+    EXPECT_FALSE(s.particleCount);
+    EXPECT_EQ(s.spheres.size(), 1u);  // touching the walls counts as inside
+}
+
+TEST(Scene, CommentsAreAllowed) {
+    Scene s = parseScene(R"({"container": {"min": [0, 0, 0], "max": [1, 1, 1]},  // metres
+                             "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}]})",
+                         "c.json");
+    EXPECT_EQ(s.blocks.size(), 1u);
+}
+
+TEST(Scene, ShippedDamBreak) {
+    Scene s = builtinScene("dam_break");
+    EXPECT_EQ(s.name, "dam_break");
+    EXPECT_EQ(s.sourcePath, "<built-in dam_break>");
+    EXPECT_FALSE(s.description.empty());
+    expectVec(s.container.min, 0, 0, 0);
+    expectVec(s.container.max, 1.6, 1.0, 0.6);
+    ASSERT_EQ(s.blocks.size(), 1u);
+    expectVec(s.blocks[0].box.min, 0, 0, 0);
+    expectVec(s.blocks[0].box.max, 0.4, 0.6, 0.6);
+    EXPECT_TRUE(s.spheres.empty());
+    EXPECT_EQ(s.particleCount, 20000);
+    EXPECT_DOUBLE_EQ(s.smoothingRatio, 2.0);
+    expectVec(s.gravity, 0, -9.81, 0);
+    EXPECT_DOUBLE_EQ(s.duration, 2.0);
+    EXPECT_DOUBLE_EQ(s.frameRate, 30);
+    EXPECT_DOUBLE_EQ(s.restDensity, 1000);
+    EXPECT_FALSE(s.viscosity);
+    EXPECT_FALSE(s.stiffness);
+    EXPECT_FALSE(s.timeStep);
+}
+
+TEST(Scene, ShippedDoubleDamBreak) {
+    Scene s = builtinScene("double_dam_break");
+    EXPECT_EQ(s.name, "double_dam_break");
+    EXPECT_FALSE(s.description.empty());
+    expectVec(s.container.max, 1.6, 1.0, 0.6);
+    ASSERT_EQ(s.blocks.size(), 2u);
+    expectVec(s.blocks[0].box.min, 0, 0, 0);
+    expectVec(s.blocks[0].box.max, 0.3, 0.6, 0.6);
+    expectVec(s.blocks[1].box.min, 1.3, 0, 0);
+    expectVec(s.blocks[1].box.max, 1.6, 0.6, 0.6);
+    EXPECT_EQ(s.particleCount, 30000);
+    EXPECT_DOUBLE_EQ(s.duration, 2.5);
+    EXPECT_DOUBLE_EQ(s.restDensity, 1000);
+    EXPECT_FALSE(s.viscosity);
+    EXPECT_FALSE(s.stiffness);
+    EXPECT_FALSE(s.timeStep);
+}
+
+TEST(Scene, ShippedDropIntoPool) {
+    Scene s = builtinScene("drop_into_pool");
+    EXPECT_EQ(s.name, "drop_into_pool");
+    EXPECT_FALSE(s.description.empty());
+    expectVec(s.container.max, 1, 1, 1);
+    ASSERT_EQ(s.blocks.size(), 1u);
+    expectVec(s.blocks[0].box.max, 1, 0.25, 1);
+    ASSERT_EQ(s.spheres.size(), 1u);
+    expectVec(s.spheres[0].sphere.center, 0.5, 0.65, 0.5);
+    EXPECT_DOUBLE_EQ(s.spheres[0].sphere.radius, 0.15);
+    expectVec(s.spheres[0].velocity, 0, -1, 0);
+    EXPECT_EQ(s.particleCount, 40000);
+    EXPECT_DOUBLE_EQ(s.duration, 2.0);
+    EXPECT_DOUBLE_EQ(s.restDensity, 1000);
+}
+
+TEST(Scene, BuiltinNamesListEveryShippedScene) {
+    std::vector<std::string> names = builtinSceneNames();
+    for (const char* name : {"dam_break", "double_dam_break", "drop_into_pool"}) {
+        EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+    }
+    for (const std::string& name : names) {
+        EXPECT_NO_THROW(builtinScene(name)) << name;
+    }
+}
+
+TEST(Scene, UnknownBuiltinListsAvailableNames) {
+    try {
+        builtinScene("dam_brake");
+        FAIL() << "no SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_TRUE(contains(e.what(), "'dam_brake'"));
+        EXPECT_TRUE(contains(e.what(), "dam_break, double_dam_break, drop_into_pool"));
+    }
+}
+
+#ifdef WEIR_SOURCE_DIR
+TEST(Scene, ShippedFilesLoadFromDisk) {
+    for (const std::string& name : builtinSceneNames()) {
+        std::string path = std::string(WEIR_SOURCE_DIR) + "/scenes/" + name + ".json";
+        Scene s = loadScene(path);
+        EXPECT_EQ(s.name, name);
+        EXPECT_EQ(s.sourcePath, path);
+        EXPECT_EQ(s.particleCount, builtinScene(name).particleCount);
+    }
+}
+#endif
+
+// One bad value: the JSON pointer it replaces in kValidScene (a missing value removes the
+// field) and what the message must hold: the field path, the value as written, what is allowed.
+struct BadCase {
+    const char* pointer;
+    std::optional<const char*> value;
+    const char* field;
+    const char* written;
+    const char* allowed;
+};
+
+const BadCase kBadCases[] = {
+    // Types and shapes.
+    {"", "[1, 2]", "the top level", "[1, 2]", "an object with keys name, description"},
+    {"/container", std::nullopt, "'container'", "missing", "an object {\"min\""},
+    {"/container/min", "\"zero\"", "'container.min'", "\"zero\"", "an array of 3 finite numbers"},
+    {"/gravity", "[0, -9.81]", "'gravity'", "[0, -9.81]", "an array of 3 finite numbers"},
+    {"/blocks/0/velocity", "[0, \"a\", 0]", "'blocks[0].velocity'", "[0, \"a\", 0]",
+     "an array of 3 finite numbers"},
+    {"/blocks", "{}", "'blocks'", "{}", "an array of objects with keys min, max, velocity"},
+    {"/blocks/0", "7", "'blocks[0]'", "7", "an object with keys min, max, velocity"},
+    {"/fluid", "5", "'fluid'", "5", "an object with keys restDensity, viscosity, stiffness"},
+    {"/fluid/restDensity", "\"1000\"", "'fluid.restDensity'", "\"1000\"", "a number > 0"},
+    {"/name", "5", "'name'", "5", "a string"},
+    {"/name", "\"\"", "'name'", "\"\"", "a non-empty string"},
+    {"/description", "true", "'description'", "true", "a string"},
+    {"/spheres/0/radius", std::nullopt, "'spheres[0].radius'", "missing", "a number > 0"},
+    // Unknown keys at every level, with the allowed ones.
+    {"/gravty", "[0, -9.81, 0]", "'gravty'", "an unknown key (did you mean 'gravity'?)",
+     "one of: name, description, container, blocks, spheres, obstacles, fluid, particles"},
+    {"/fluid/restDensty", "1000", "'fluid.restDensty'", "(did you mean 'restDensity'?)",
+     "one of: restDensity, viscosity, stiffness"},
+    {"/blocks/0/speed", "[0, 0, 0]", "'blocks[0].speed'", "an unknown key",
+     "one of: min, max, velocity"},
+    {"/obstacles/planes", "[]", "'obstacles.planes'", "an unknown key", "one of: boxes, spheres"},
+    // Geometry.
+    {"/container/max", "[1.6, 0, 0.6]", "'container.max'", "[1.6, 0, 0.6]",
+     "greater than min [0, 0, 0] on every axis (it is not on y)"},
+    {"/blocks/0/max", "[0.4, 0.6, 0]", "'blocks[0].max'", "[0.4, 0.6, 0]",
+     "greater than min [0, 0, 0] on every axis (it is not on z)"},
+    {"/obstacles/boxes/0/max", "[0.9, 0.2, 0.6]", "'obstacles.boxes[0].max'", "[0.9, 0.2, 0.6]",
+     "greater than min [1.0, 0, 0] on every axis (it is not on x)"},
+    {"/spheres/0/radius", "0", "'spheres[0].radius'", "is 0", "a number > 0"},
+    {"/obstacles/spheres/0/radius", "-0.1", "'obstacles.spheres[0].radius'", "-0.1",
+     "a number > 0"},
+    {"/blocks/0/max", "[1.7, 0.6, 0.6]", "'blocks[0]'", "max [1.7, 0.6, 0.6]",
+     "inside the container [0, 0, 0] to [1.6, 1, 0.6] (it sticks out by 0.1 on +x)"},
+    {"/spheres/0/center", "[0.8, 0.9, 0.1]", "'spheres[0]'", "center [0.8, 0.9, 0.1]",
+     "inside the container [0, 0, 0] to [1.6, 1, 0.6] (it sticks out by 0.05 on +y, 0.05 on -z)"},
+    {"/blocks", "[]", "'blocks'", "[]", "a non-empty array of fluid blocks"},
+    // Fluid.
+    {"/fluid/restDensity", "-5", "'fluid.restDensity'", "is -5", "a number > 0"},
+    {"/fluid/viscosity", "-0.1", "'fluid.viscosity'", "-0.1", "a number >= 0"},
+    {"/fluid/stiffness", "0", "'fluid.stiffness'", "is 0", "a number > 0"},
+    // Particles.
+    {"/particles/count", "0", "'particles.count'", "is 0", "an integer in [1, 2147483647]"},
+    {"/particles/count", "2147483648", "'particles.count'", "2147483648",
+     "an integer in [1, 2147483647]"},
+    {"/particles/count", "1.5", "'particles.count'", "1.5", "an integer in [1, 2147483647]"},
+    {"/particles/spacing", "0.01", "'particles'", "\"spacing\":0.01",
+     "an object with at most one of 'count' and 'spacing'"},
+    {"/particles", "{\"spacing\": -0.01}", "'particles.spacing'", "-0.01", "a number > 0"},
+    {"/particles/smoothingRatio", "1.0", "'particles.smoothingRatio'", "1.0",
+     "a number in [1.2, 5]"},
+    {"/particles/smoothingRatio", "6", "'particles.smoothingRatio'", "6", "a number in [1.2, 5]"},
+    // Time.
+    {"/time/duration", "0", "'time.duration'", "is 0", "a number > 0"},
+    {"/time/frameRate", "-30", "'time.frameRate'", "-30", "a number > 0"},
+    {"/time/timeStep", "0", "'time.timeStep'", "is 0", "a number > 0"},
+    {"/time/timeStep", "0.1", "'time.timeStep'", "0.1",
+     "a number > 0 and <= 0.01666666667 (1 / frameRate)"},
+    {"/time/integrator", "\"rk4\"", "'time.integrator'", "\"rk4\"",
+     "one of \"semi-implicit-euler\", \"explicit-euler\""},
+    {"/time/integrator", "2", "'time.integrator'", "is 2", "a string"},
+    // Walls and limits.
+    {"/walls/restitution", "1.5", "'walls.restitution'", "1.5", "a number in [0, 1]"},
+    {"/walls/friction", "-0.1", "'walls.friction'", "-0.1", "a number in [0, 1]"},
+    {"/limits/maxSpeed", "0", "'limits.maxSpeed'", "is 0", "a number > 0"},
+};
+
+TEST(Scene, EachBadValueNamesFileFieldValueAndAllowedRange) {
+    for (const BadCase& c : kBadCases) {
+        Json scene = Json::parse(kValidScene);
+        Json::json_pointer pointer(c.pointer);
+        if (c.value) {
+            scene[pointer] = Json::parse(*c.value);
+        } else {
+            scene[pointer.parent_pointer()].erase(pointer.back());
+        }
+        if (c.pointer == std::string("/blocks")) {
+            scene.erase("spheres");  // no fluid at all
+        }
+        std::string message = errorOf(scene.dump(), "scenes/bad.json");
+        SCOPED_TRACE(std::string(c.pointer) + " = " + c.value.value_or("(removed)"));
+        EXPECT_TRUE(contains(message, "scene 'scenes/bad.json'"));
+        EXPECT_TRUE(contains(message, c.field));
+        EXPECT_TRUE(contains(message, c.written));
+        EXPECT_TRUE(contains(message, "must be " + std::string(c.allowed)));
+    }
+}
+
+TEST(Scene, MessageReadsWell) {
+    EXPECT_EQ(errorOf(R"({"container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+                          "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}],
+                          "fluid": {"restDensity": -5}})",
+                      "scenes/x.json"),
+              "scene 'scenes/x.json': field 'fluid.restDensity' is -5, must be a number > 0");
+}
+
+TEST(Scene, MalformedJsonReportsFileAndPosition) {
+    std::string message = errorOf("{\n  \"container\": ,\n}", "scenes/broken.json");
+    EXPECT_TRUE(contains(message, "scene 'scenes/broken.json': invalid JSON"));
+    EXPECT_TRUE(contains(message, "line 2"));
+    EXPECT_TRUE(contains(errorOf(R"({"fluid": {"restDensity": 1e400}})"), "1e400"));
+}
+
+TEST(Scene, LoadSceneReadsAFileAndNamesItByStem) {
+    auto path = std::filesystem::temp_directory_path() / "weir_scene_test_load.json";
+    std::ofstream(path) << R"({"container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+                               "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}]})";
+    Scene s = loadScene(path.string());
+    std::filesystem::remove(path);
+    EXPECT_EQ(s.name, "weir_scene_test_load");
+    EXPECT_EQ(s.sourcePath, path.string());
+}
+
+TEST(Scene, UnreadableFilesReportPathAndReason) {
+    try {
+        loadScene("/nonexistent/weir/scene.json");
+        FAIL() << "no SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_TRUE(contains(e.what(), "'/nonexistent/weir/scene.json'"));
+        EXPECT_TRUE(contains(e.what(), "No such file or directory"));
+    }
+    std::string directory = std::filesystem::temp_directory_path().string();
+    try {
+        loadScene(directory);
+        FAIL() << "no SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_TRUE(contains(e.what(), "'" + directory + "'"));
+        EXPECT_TRUE(contains(e.what(), "Is a directory"));
+    }
+}
+
+}  // namespace
+}  // namespace weir

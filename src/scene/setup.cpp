@@ -1,0 +1,323 @@
+// Parameter derivation and particle seeding for a scene.
+#include "scene/setup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "grid/cell_id.h"
+#include "physics/kernels.h"
+
+namespace weir {
+
+namespace {
+
+constexpr std::int64_t kDefaultParticleCount = 20000;
+
+bool insideBox(const Vec3d& p, const Box& b) {
+    return p.x >= b.min.x && p.x < b.max.x && p.y >= b.min.y && p.y < b.max.y && p.z >= b.min.z &&
+           p.z < b.max.z;
+}
+bool insideSphere(const Vec3d& p, const SphereShape& s) {
+    return lengthSquared(p - s.center) < s.radius * s.radius;
+}
+bool insideObstacle(const Scene& scene, const Vec3d& p) {
+    for (const Box& b : scene.obstacleBoxes) {
+        if (insideBox(p, b)) {
+            return true;
+        }
+    }
+    for (const SphereShape& s : scene.obstacleSpheres) {
+        if (insideSphere(p, s)) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Visits lattice points of spacing d filling the fluid. Points in two shapes are visited once.
+template <class F>
+void forEachSeed(const Scene& scene, double d, F&& visit) {
+    auto lattice = [&](const Vec3d& lo, const Vec3d& hi, auto&& keep, const Vec3d& velocity,
+                       std::size_t shapeIndex) {
+        long nx = long(std::floor((hi.x - lo.x) / d + 1e-9));
+        long ny = long(std::floor((hi.y - lo.y) / d + 1e-9));
+        long nz = long(std::floor((hi.z - lo.z) / d + 1e-9));
+        for (long k = 0; k < nz; ++k) {
+            for (long j = 0; j < ny; ++j) {
+                for (long i = 0; i < nx; ++i) {
+                    Vec3d p(lo.x + (i + 0.5) * d, lo.y + (j + 0.5) * d, lo.z + (k + 0.5) * d);
+                    if (!keep(p) || insideObstacle(scene, p)) {
+                        continue;
+                    }
+                    bool earlier = false;  // already seeded by an earlier shape
+                    for (std::size_t b = 0; b < shapeIndex && b < scene.blocks.size(); ++b) {
+                        earlier = earlier || insideBox(p, scene.blocks[b].box);
+                    }
+                    for (std::size_t s = scene.blocks.size(); s < shapeIndex; ++s) {
+                        earlier = earlier ||
+                                  insideSphere(p, scene.spheres[s - scene.blocks.size()].sphere);
+                    }
+                    if (!earlier) {
+                        visit(p, velocity);
+                    }
+                }
+            }
+        }
+    };
+    for (std::size_t b = 0; b < scene.blocks.size(); ++b) {
+        const FluidBlock& block = scene.blocks[b];
+        lattice(block.box.min, block.box.max, [](const Vec3d&) { return true; }, block.velocity,
+                b);
+    }
+    for (std::size_t s = 0; s < scene.spheres.size(); ++s) {
+        const FluidSphere& sphere = scene.spheres[s];
+        Vec3d r(sphere.sphere.radius, sphere.sphere.radius, sphere.sphere.radius);
+        lattice(sphere.sphere.center - r, sphere.sphere.center + r,
+                [&](const Vec3d& p) { return insideSphere(p, sphere.sphere); }, sphere.velocity,
+                scene.blocks.size() + s);
+    }
+}
+
+std::int64_t countSeeds(const Scene& scene, double d) {
+    std::int64_t count = 0;
+    forEachSeed(scene, d, [&](const Vec3d&, const Vec3d&) { ++count; });
+    return count;
+}
+
+double fluidVolume(const Scene& scene) {
+    double v = 0;
+    for (const FluidBlock& b : scene.blocks) {
+        Vec3d e = b.box.max - b.box.min;
+        v += e.x * e.y * e.z;
+    }
+    for (const FluidSphere& s : scene.spheres) {
+        v += 4.0 / 3.0 * kPi * std::pow(s.sphere.radius, 3);
+    }
+    return v;
+}
+
+// The spacing whose lattice holds closest to `wanted` particles (bisection on the count).
+double spacingForCount(const Scene& scene, std::int64_t wanted) {
+    double guess = std::cbrt(fluidVolume(scene) / double(wanted));
+    double lo = guess * 0.7, hi = guess * 1.4;  // count(lo) >= wanted >= count(hi)
+    double best = guess;
+    std::int64_t bestError = std::llabs(countSeeds(scene, guess) - wanted);
+    for (int it = 0; it < 40 && bestError > 0; ++it) {
+        double mid = 0.5 * (lo + hi);
+        std::int64_t count = countSeeds(scene, mid);
+        if (std::llabs(count - wanted) < bestError) {
+            bestError = std::llabs(count - wanted);
+            best = mid;
+        }
+        (count > wanted ? lo : hi) = mid;
+        if (hi - lo < guess * 1e-7) {
+            break;
+        }
+    }
+    return best;
+}
+
+std::string fmt(double v) {
+    std::ostringstream s;
+    s.precision(4);
+    s << v;
+    return s.str();
+}
+
+}  // namespace
+
+double latticeKernelSum(double ratio) {
+    KernelCoefficients k = KernelCoefficients::forRadius(ratio);
+    int reach = int(std::ceil(ratio));
+    double sum = 0;
+    for (int i = -reach; i <= reach; ++i) {
+        for (int j = -reach; j <= reach; ++j) {
+            for (int l = -reach; l <= reach; ++l) {
+                double r2 = double(i * i + j * j + l * l);
+                if (r2 < ratio * ratio) {
+                    double t = 1.0 - r2 / (ratio * ratio);
+                    sum += double(k.poly6) * t * t * t;
+                }
+            }
+        }
+    }
+    return sum;
+}
+
+HostParticles seedParticles(const Scene& scene, double spacing) {
+    HostParticles particles;
+    forEachSeed(scene, spacing, [&](const Vec3d& p, const Vec3d& v) { particles.push(p, v); });
+    return particles;
+}
+
+SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, SetupReport* out) {
+    SetupReport report;
+    auto say = [&](const std::string& line) { report.lines.push_back(line); };
+    const std::string where = "scene '" + scene.sourcePath + "'";
+
+    // Resolution: spacing given, or the spacing whose lattice holds the wanted count.
+    report.fluidVolume = fluidVolume(scene);
+    if (options.particleCount) {
+        report.spacing = spacingForCount(scene, *options.particleCount);
+        say("spacing d = " + fmt(report.spacing) + " m, for about " +
+            std::to_string(*options.particleCount) + " particles (--particles)");
+    } else if (scene.spacing) {
+        report.spacing = *scene.spacing;
+        say("spacing d = " + fmt(report.spacing) + " m (scene)");
+    } else {
+        std::int64_t wanted = scene.particleCount.value_or(kDefaultParticleCount);
+        report.spacing = spacingForCount(scene, wanted);
+        say("spacing d = " + fmt(report.spacing) + " m, for about " + std::to_string(wanted) +
+            " particles" + (scene.particleCount ? " (scene)" : " (default count)"));
+    }
+    const double d = report.spacing;
+    SimulationSetup setup;
+    setup.particles = seedParticles(scene, d);
+    if (setup.particles.size() == 0) {
+        throw SceneError(where + ": the fluid holds no particle at spacing " + fmt(d) +
+                         " m; make the blocks or spheres larger or the spacing smaller");
+    }
+    if (setup.particles.size() > std::size_t(2147483647)) {
+        throw SceneError(where + ": " + std::to_string(setup.particles.size()) +
+                         " particles exceed the limit of 2147483647");
+    }
+
+    // Smoothing radius and mass (§5.2: mass from density, volume and count). The lattice sum
+    // corrects the mass so that the initial lattice sits exactly at the rest density; without
+    // it poly6 at h = 2d reads 1% dense and the fluid starts with a jolt.
+    const double h = scene.smoothingRatio * d;
+    report.smoothingRadius = h;
+    report.latticeKernelSum = latticeKernelSum(scene.smoothingRatio);
+    const double mass = scene.restDensity * d * d * d / report.latticeKernelSum;
+    say("smoothing radius h = " + fmt(h) + " m (" + fmt(scene.smoothingRatio) + " d)");
+    say("particle mass m = " + fmt(mass) + " kg = rho0 d^3 / " + fmt(report.latticeKernelSum) +
+        " (lattice sum of poly6, so the initial fluid is at rest density)");
+
+    // Expected speeds: free fall over the deepest column, plus any initial speed.
+    const double g = length(scene.gravity);
+    Vec3d up = g > 0 ? scene.gravity / -g : Vec3d(0, 1, 0);
+    double floor = 1e300, top = -1e300, initialSpeed = 0;
+    for (int c = 0; c < 8; ++c) {
+        Vec3d corner((c & 1) ? scene.container.max.x : scene.container.min.x,
+                     (c & 2) ? scene.container.max.y : scene.container.min.y,
+                     (c & 4) ? scene.container.max.z : scene.container.min.z);
+        floor = std::min(floor, dot(corner, up));
+    }
+    for (const FluidBlock& b : scene.blocks) {
+        for (int c = 0; c < 8; ++c) {
+            Vec3d corner((c & 1) ? b.box.max.x : b.box.min.x, (c & 2) ? b.box.max.y : b.box.min.y,
+                         (c & 4) ? b.box.max.z : b.box.min.z);
+            top = std::max(top, dot(corner, up));
+        }
+        initialSpeed = std::max(initialSpeed, length(b.velocity));
+    }
+    for (const FluidSphere& s : scene.spheres) {
+        top = std::max(top, dot(s.sphere.center, up) + s.sphere.radius);
+        initialSpeed = std::max(initialSpeed, length(s.velocity));
+    }
+    report.fluidHeight = std::max(0.0, top - floor);
+    report.expectedSpeed = std::sqrt(2.0 * g * report.fluidHeight) + initialSpeed;
+    if (report.expectedSpeed <= 0) {
+        report.expectedSpeed = 0.1;
+    }
+    say("expected top speed " + fmt(report.expectedSpeed) + " m/s = sqrt(2 g H) + initial, H = " +
+        fmt(report.fluidHeight) + " m");
+
+    // Stiffness: speed of sound ten times the top speed keeps density within ~1% (Monaghan).
+    double stiffness;
+    if (scene.stiffness) {
+        stiffness = *scene.stiffness;
+        say("stiffness k = " + fmt(stiffness) + " m^2/s^2 (scene)");
+        if (std::sqrt(stiffness) < 5.0 * report.expectedSpeed) {
+            report.warnings.push_back(
+                "stiffness k = " + fmt(stiffness) + " gives a speed of sound of " +
+                fmt(std::sqrt(stiffness)) + " m/s, under 5x the expected speed " +
+                fmt(report.expectedSpeed) + " m/s: the fluid will compress visibly; k >= " +
+                fmt(std::pow(10 * report.expectedSpeed, 2)) + " keeps it within ~1%");
+        }
+    } else {
+        stiffness = std::pow(10.0 * report.expectedSpeed, 2);
+        say("stiffness k = " + fmt(stiffness) + " m^2/s^2: speed of sound c = 10 x expected speed");
+    }
+    say(scene.clampNegativePressure
+            ? "pressure P = max(0, k (rho - rho0)): eq. 3 clamped at the free surface"
+            : "pressure P = k (rho - rho0): eq. 3 as in the paper, negative at the free surface");
+    const double c = std::sqrt(stiffness);
+    report.speedOfSound = c;
+
+    // Viscosity: the scene's, or an artificial one that damps the pressure waves of a weakly
+    // compressible fluid (kinematic nu = alpha h c / 10 with alpha = 0.1, Monaghan's form).
+    double viscosity;
+    if (scene.viscosity) {
+        viscosity = *scene.viscosity;
+        say("viscosity mu = " + fmt(viscosity) + " Pa s (scene)");
+    } else {
+        viscosity = scene.restDensity * 0.1 * h * c / 10.0;
+        say("viscosity mu = " + fmt(viscosity) +
+            " Pa s: artificial, nu = 0.1 h c / 10, to damp pressure waves");
+    }
+
+    // Time step: CFL, viscous diffusion and body-force limits; whole steps per output frame.
+    const double nu = viscosity / scene.restDensity;
+    double dtCfl = 0.4 * h / (c + report.expectedSpeed);
+    double dtViscous = nu > 0 ? 0.125 * h * h / nu : 1e300;
+    double dtForce = g > 0 ? 0.25 * std::sqrt(h / g) : 1e300;
+    double dtStable = std::min({dtCfl, dtViscous, dtForce});
+    double dt = dtStable;
+    if (scene.timeStep) {
+        dt = *scene.timeStep;
+        if (dt > dtStable) {
+            report.warnings.push_back("time step " + fmt(dt) + " s is above the stable limit " +
+                                      fmt(dtStable) +
+                                      " s (CFL, viscosity, force): expect the fluid to blow up; "
+                                      "leave time.timeStep unset to use the limit");
+        }
+    }
+    report.frameInterval = 1.0 / scene.frameRate;
+    report.stepsPerFrame = std::max(1, int(std::ceil(report.frameInterval / dt - 1e-9)));
+    dt = report.frameInterval / report.stepsPerFrame;
+    report.frames = std::int64_t(std::floor(scene.duration * scene.frameRate + 1e-9));
+    say("time step " + fmt(dt) + " s (" + std::to_string(report.stepsPerFrame) +
+        " per frame; limits: CFL " + fmt(dtCfl) + ", viscous " + fmt(dtViscous) + ", force " +
+        fmt(dtForce) + ")");
+
+    SphParams& p = setup.params;
+    p.kernel = KernelCoefficients::forRadius(h);
+    p.mass = Real(mass);
+    p.restDensity = Real(scene.restDensity);
+    p.stiffness = Real(stiffness);
+    p.clampNegativePressure = scene.clampNegativePressure;
+    p.viscosity = Real(viscosity);
+    p.gravity = Vec3(scene.gravity);
+    p.timeStep = Real(dt);
+    p.integrator = scene.integrator == Integrator::ExplicitEuler ? IntegratorKind::ExplicitEuler
+                                                                 : IntegratorKind::SemiImplicitEuler;
+    p.boxMin = Vec3(scene.container.min);
+    p.boxMax = Vec3(scene.container.max);
+    p.restitution = Real(scene.wallRestitution);
+    p.friction = Real(scene.wallFriction);
+    p.maxSpeed = Real(scene.maxSpeed.value_or(std::max(2.0 * c, 20.0 * report.expectedSpeed)));
+    say("blow-up bound: speed > " + fmt(p.maxSpeed) + " m/s, NaN, or a particle outside the box");
+
+    try {
+        setup.grid = makeGridSpec(scene.container.min, scene.container.max, h);
+    } catch (const std::exception& e) {
+        throw SceneError(where + ": " + e.what());
+    }
+    for (const Box& b : scene.obstacleBoxes) {
+        setup.obstacleBoxes.push_back({Vec3(b.min), Vec3(b.max)});
+    }
+    for (const SphereShape& s : scene.obstacleSpheres) {
+        setup.obstacleSpheres.push_back({Vec3(s.center), Real(s.radius)});
+    }
+    say(std::to_string(setup.particles.size()) + " particles, grid " +
+        std::to_string(setup.grid.dims[0]) + " x " + std::to_string(setup.grid.dims[1]) + " x " +
+        std::to_string(setup.grid.dims[2]) + " cells of " + fmt(h) + " m");
+    if (out != nullptr) {
+        *out = std::move(report);
+    }
+    return setup;
+}
+
+}  // namespace weir

@@ -1,0 +1,44 @@
+// From a scene to a runnable setup: particle spacing, mass, smoothing radius, stiffness,
+// viscosity and time step derived from physics (paper §5.2), and the initial particles.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+#include "solver/simulation.h"
+
+namespace weir {
+
+struct SetupOptions {
+    std::optional<std::int64_t> particleCount;  // overrides the scene's resolution
+};
+
+// What was chosen and why, for logs, --explain and benchmarks.
+struct SetupReport {
+    double spacing = 0;          // particle spacing d, m
+    double smoothingRadius = 0;  // h, m
+    double fluidVolume = 0;      // m^3
+    double fluidHeight = 0;      // deepest fluid column along gravity, m
+    double expectedSpeed = 0;    // largest speed expected from the fall height and initial speeds
+    double speedOfSound = 0;     // sqrt(k), m/s
+    double latticeKernelSum = 0; // sum of poly6 * d^3 over a full lattice (1 for an exact kernel)
+    int stepsPerFrame = 0;
+    double frameInterval = 0;    // s
+    std::int64_t frames = 0;     // frames after frame 0
+    std::vector<std::string> lines;     // one per decision, human-readable
+    std::vector<std::string> warnings;  // settings likely to make the fluid misbehave
+};
+
+// Builds the setup; throws SceneError for a scene that cannot be run (no particles, grid too big).
+SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, SetupReport* report);
+
+// Initial particles on a cubic lattice of spacing d filling the scene's blocks and spheres.
+HostParticles seedParticles(const Scene& scene, double spacing);
+
+// Sum over a cubic lattice of spacing 1 of poly6 with radius `ratio` (W * d^3), in double.
+double latticeKernelSum(double ratio);
+
+}  // namespace weir

@@ -1,0 +1,100 @@
+// Backend dispatch, memory checks and fault diagnosis.
+#include "solver/simulation.h"
+
+#include <sstream>
+#include <stdexcept>
+
+#include "core/check.h"
+#include "core/exec_cpu.h"
+
+namespace weir {
+
+std::unique_ptr<Simulation> makeCpuSimulation(NeighbourMode mode, SimulationSetup setup);
+#if defined(WEIR_HAS_CUDA)
+std::unique_ptr<Simulation> makeCudaSimulation(NeighbourMode mode, SimulationSetup setup);
+#endif
+
+NeighbourMode parseNeighbourMode(const std::string& name) {
+    if (name == "grid") {
+        return NeighbourMode::Grid;
+    }
+    if (name == "brute") {
+        return NeighbourMode::Brute;
+    }
+    throw std::invalid_argument("unknown neighbour search '" + name + "': allowed are grid, brute");
+}
+
+const char* neighbourModeName(NeighbourMode mode) {
+    return mode == NeighbourMode::Grid ? "grid" : "brute";
+}
+
+std::size_t bytesPerParticleEstimate(NeighbourMode mode) {
+    // 11 attribute arrays (x, v, a, rho, p) and the id.
+    std::size_t bytes = 11 * sizeof(Real) + sizeof(Index);
+    if (mode == NeighbourMode::Grid) {
+        // Reorder scratch (6 reals, id), keys and values twice, cell of each particle,
+        // and cell tables for up to one occupied cell per two particles with 25% headroom.
+        bytes += 6 * sizeof(Real) + sizeof(Index) + 4 * 4 + sizeof(Index);
+        bytes += (3 * 4 + 27 * sizeof(Index)) * 5 / 8;
+    }
+    return bytes;
+}
+
+void checkMemoryFits(Index count, NeighbourMode mode, std::size_t freeBytes,
+                     const std::string& where) {
+    const std::size_t perParticle = bytesPerParticleEstimate(mode);
+    // Keep 10% and 256 MiB back for sort scratch, the driver and the rest of the process.
+    const std::size_t reserve = (std::size_t(256) << 20) + freeBytes / 10;
+    const std::size_t usable = freeBytes > reserve ? freeBytes - reserve : 0;
+    const std::size_t fit = usable / perParticle;
+    if (std::size_t(count) > fit) {
+        std::ostringstream msg;
+        msg << count << " particles need about " << (std::size_t(count) * perParticle >> 20)
+            << " MiB (" << perParticle << " bytes each) but " << where << " has "
+            << (freeBytes >> 20) << " MiB free: at most " << fit << " particles fit";
+        throw SimulationError(msg.str());
+    }
+}
+
+std::unique_ptr<Simulation> makeSimulation(Backend backend, NeighbourMode mode,
+                                           SimulationSetup setup) {
+    if (backend == Backend::Cpu) {
+        checkMemoryFits(Index(setup.particles.size()), mode, CpuExec().freeMemoryBytes(),
+                        "host memory");
+        return makeCpuSimulation(mode, std::move(setup));
+    }
+#if defined(WEIR_HAS_CUDA)
+    if (!cudaDeviceAvailable()) {
+        throw SimulationError("the cuda backend was asked for, but no CUDA device is visible");
+    }
+    return makeCudaSimulation(mode, std::move(setup));
+#else
+    throw SimulationError("the cuda backend was asked for, but this weir was built without CUDA");
+#endif
+}
+
+std::string describeFault(const FaultRecord& fault, const SphParams& params) {
+    std::ostringstream msg;
+    msg << "the simulation blew up at step " << fault.step << " (t = " << fault.step * params.timeStep
+        << " s): ";
+    switch (FaultCode(fault.code)) {
+        case FaultCode::NotFinite:
+            msg << "a particle's position or velocity became NaN or infinite";
+            break;
+        case FaultCode::TooFast:
+            msg << "a particle reached " << fault.value << " m/s, past the bound of "
+                << params.maxSpeed << " m/s";
+            break;
+        case FaultCode::Escaped:
+            msg << "a particle left the container";
+            break;
+        default:
+            msg << "unknown fault code " << fault.code;
+    }
+    msg << ". Likely causes: a time step too large for the stiffness (CFL), too little viscosity,"
+           " or a stiffness too low for the fall height; leave timeStep, stiffness and viscosity"
+           " unset to have weir derive them.";
+    return msg.str();
+}
+
+}  // namespace weir

@@ -1,0 +1,79 @@
+// The simulation interface that the CLI and tests drive, independent of backend.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/backend.h"
+#include "core/stage_timer.h"
+#include "grid/cell_id.h"
+#include "physics/sph_params.h"
+#include "physics/stages.h"
+#include "solver/particles.h"
+
+namespace weir {
+
+enum class NeighbourMode { Grid, Brute };
+
+NeighbourMode parseNeighbourMode(const std::string& name);
+const char* neighbourModeName(NeighbourMode mode);
+
+// Everything a backend needs to start: parameters, grid, obstacles and the initial particles.
+struct SimulationSetup {
+    SphParams params;
+    GridSpec grid;
+    std::vector<ObstacleBox> obstacleBoxes;
+    std::vector<ObstacleSphere> obstacleSpheres;
+    HostParticles particles;
+};
+
+// A diagnosis of a blown-up state, made from the first fault recorded on the device.
+std::string describeFault(const FaultRecord& fault, const SphParams& params);
+
+class Simulation {
+   public:
+    virtual ~Simulation() = default;
+
+    // Advances `steps` time steps of params().timeStep. Does not synchronize with the host.
+    virtual void advance(int steps) = 0;
+    // Computes density and pressure of the current state without stepping (for frame 0).
+    virtual void computeDensity() = 0;
+    // Copies the particles back, in their original (initial) order.
+    virtual void download(HostParticles& out) = 0;
+    // The first fault recorded since the start (code None if there was none).
+    virtual FaultRecord fault() = 0;
+    // Waits for queued device work.
+    virtual void synchronize() = 0;
+
+    // Per-stage timing; when on, each step's stage times are recorded (this synchronizes).
+    virtual void setTiming(bool on) = 0;
+    virtual const StageTimes& stageTimes() const = 0;
+    virtual void clearStageTimes() = 0;
+
+    virtual Backend backend() const = 0;
+    virtual NeighbourMode neighbourMode() const = 0;
+    virtual std::string deviceName() const = 0;
+    // Bytes of device (CUDA) or host (CPU) memory held for particles, grid and scratch.
+    virtual std::size_t bytesHeld() const = 0;
+    // Occupied grid cells after the last grid build (0 in brute-force mode).
+    virtual Index occupiedCells() const = 0;
+
+    virtual const SphParams& params() const = 0;
+    virtual Index particleCount() const = 0;
+    virtual long long stepCount() const = 0;
+    double time() const { return double(stepCount()) * double(params().timeStep); }
+};
+
+// Creates a simulation on a backend; throws SimulationError if the particles do not fit in memory.
+std::unique_ptr<Simulation> makeSimulation(Backend backend, NeighbourMode mode,
+                                           SimulationSetup setup);
+
+// Bytes of memory one particle needs (arrays, sort scratch, grid tables), an upper estimate.
+std::size_t bytesPerParticleEstimate(NeighbourMode mode);
+
+// Throws SimulationError naming how many particles would fit if `count` do not fit in `freeBytes`.
+void checkMemoryFits(Index count, NeighbourMode mode, std::size_t freeBytes, const std::string& where);
+
+}  // namespace weir
