@@ -127,11 +127,14 @@ std::string fmt(double v) {
 
 }  // namespace
 
-double latticeKernelSum(double ratio) {
+namespace {
+
+// Sum of poly6 (radius `ratio`, lattice spacing 1) over the lattice sites with x-index >= firstX.
+double latticeSum(double ratio, int firstX) {
     KernelCoefficients k = KernelCoefficients::forRadius(ratio);
     int reach = int(std::ceil(ratio));
     double sum = 0;
-    for (int i = -reach; i <= reach; ++i) {
+    for (int i = std::max(-reach, firstX); i <= reach; ++i) {
         for (int j = -reach; j <= reach; ++j) {
             for (int l = -reach; l <= reach; ++l) {
                 double r2 = double(i * i + j * j + l * l);
@@ -144,6 +147,10 @@ double latticeKernelSum(double ratio) {
     }
     return sum;
 }
+
+}  // namespace
+
+double latticeKernelSum(double ratio) { return latticeSum(ratio, -int(std::ceil(ratio))); }
 
 HostParticles seedParticles(const Scene& scene, double spacing) {
     HostParticles particles;
@@ -297,7 +304,8 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     p.boxMax = Vec3(scene.container.max);
     p.restitution = Real(scene.wallRestitution);
     p.friction = Real(scene.wallFriction);
-    p.maxSpeed = Real(scene.maxSpeed.value_or(std::max(2.0 * c, 20.0 * report.expectedSpeed)));
+    // Ten times the free-fall speed: splashes reach two or three times it, a blow-up far more.
+    p.maxSpeed = Real(scene.maxSpeed.value_or(10.0 * report.expectedSpeed));
     say("blow-up bound: speed > " + fmt(p.maxSpeed) + " m/s, NaN, or a particle outside the box");
 
     try {

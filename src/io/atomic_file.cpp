@@ -1,0 +1,65 @@
+// writeFileAtomically: temporary file, stream checks, rename.
+#include "io/atomic_file.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+namespace weir {
+
+namespace {
+
+// The OS reason for the last failure, or a fallback when the library left errno unset.
+std::string osReason(const char* fallback) { return errno != 0 ? std::strerror(errno) : fallback; }
+
+}  // namespace
+
+void writeFileAtomically(const std::string& path,
+                         const std::function<void(std::ostream&)>& writeBody) {
+    // pid + counter: unique across processes and across threads of this one.
+    static std::atomic<unsigned> counter{0};
+    const std::string tmpPath =
+        path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+    const auto removeTmp = [&] {
+        std::error_code ignored;
+        std::filesystem::remove(tmpPath, ignored);
+    };
+    const auto fail = [&](const std::string& what, const std::string& reason) {
+        removeTmp();
+        throw IoError("cannot write '" + path + "': " + what + ": " + reason);
+    };
+
+    errno = 0;
+    std::ofstream out(tmpPath, std::ios::binary | std::ios::trunc);
+    if (!out) {
+        fail("cannot create temporary '" + tmpPath + "'", osReason("open failed"));
+    }
+    try {
+        errno = 0;
+        writeBody(out);
+    } catch (...) {
+        out.close();
+        removeTmp();
+        throw;
+    }
+    out.flush();  // a failed write inside writeBody left its errno; keep it for the message
+    if (!out) {
+        fail("write failed", osReason("stream error"));
+    }
+    errno = 0;
+    out.close();
+    if (!out) {
+        fail("close failed", osReason("stream error"));
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmpPath, path, ec);
+    if (ec) {
+        fail("cannot rename temporary '" + tmpPath + "' over it", ec.message());
+    }
+}
+
+}  // namespace weir

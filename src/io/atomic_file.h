@@ -1,0 +1,19 @@
+// writeFileAtomically: write a file through a temporary beside it, then rename over the target.
+#pragma once
+
+#include <functional>
+#include <ostream>
+#include <string>
+
+#include "io/io_error.h"
+
+namespace weir {
+
+// Writes `path` so that readers (and an interrupted run) only ever see the old file or the
+// complete new one: writeBody fills a uniquely named temporary in the same directory, which is
+// then renamed over `path`. On failure the temporary is removed; I/O failures throw IoError
+// naming the path and the OS reason, an exception thrown by writeBody propagates unchanged.
+void writeFileAtomically(const std::string& path,
+                         const std::function<void(std::ostream&)>& writeBody);
+
+}  // namespace weir

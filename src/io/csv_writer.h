@@ -1,0 +1,16 @@
+// writeCsv: one particle frame as CSV text, a header row then one row per particle.
+#pragma once
+
+#include <string>
+
+#include "io/io_error.h"
+#include "solver/particles.h"
+
+namespace weir {
+
+// Writes the particles atomically under the header `x,y,z,vx,vy,vz,density,pressure` (the
+// field registry's columns). Each number is the shortest text that reads back to the same
+// Real. Throws IoError when the file cannot be written.
+void writeCsv(const std::string& path, const HostParticles& particles);
+
+}  // namespace weir

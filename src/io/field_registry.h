@@ -1,0 +1,37 @@
+// The per-particle fields that exporters write (besides positions), so writers loop over one list.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "solver/particles.h"
+
+namespace weir {
+
+// One field: its name ("velocity"), component count, per-component names for column formats
+// (PLY, CSV: "vx", "vy", "vz"; a scalar field's single component carries the field name), and
+// the component arrays of one HostParticles. Array is `const std::vector<Real>` or, for
+// readers filling particles, `std::vector<Real>`.
+template <class Array>
+struct FieldDescT {
+    std::string name;
+    int components = 0;
+    std::vector<std::string> componentNames;
+    std::vector<Array*> arrays;
+};
+
+using FieldDesc = FieldDescT<const std::vector<Real>>;
+using MutableFieldDesc = FieldDescT<std::vector<Real>>;
+
+// "velocity" (vx, vy, vz), "density" (rho), "pressure" (p), in the order writers emit them.
+std::vector<FieldDesc> particleFields(const HostParticles& particles);
+// The same list with writable arrays, for readers.
+std::vector<MutableFieldDesc> mutableParticleFields(HostParticles& particles);
+
+// Every scalar column in file order, for row formats (PLY, CSV): x, y, z, then each field's
+// components. Names and arrays correspond index by index.
+std::vector<std::string> particleColumnNames();
+std::vector<const std::vector<Real>*> particleColumns(const HostParticles& particles);
+std::vector<std::vector<Real>*> mutableParticleColumns(HostParticles& particles);
+
+}  // namespace weir

@@ -1,0 +1,27 @@
+// Readers for the frames this module writes (VTU, PLY, CSV), for tests and later tools.
+#pragma once
+
+#include <string>
+
+#include "io/io_error.h"
+#include "solver/particles.h"
+
+namespace weir {
+
+// Each reader validates what it reads and throws IoError naming the file and what is wrong
+// (cannot open, not this format, missing array or column, wrong type or size, truncated).
+
+// Reads a .vtu written by writeVtu; stores its FieldData "TimeValue" in *time when given.
+// Float32 and Float64 arrays are both accepted and converted to Real.
+HostParticles readVtu(const std::string& path, double* time = nullptr);
+// Just the "TimeValue" of a .vtu written by writeVtu.
+double readVtuTime(const std::string& path);
+
+// Reads a binary little-endian .ply holding at least the columns writePly writes (float or
+// double each); other vertex properties are ignored.
+HostParticles readPly(const std::string& path);
+
+// Reads a .csv written by writeCsv (the header must match exactly).
+HostParticles readCsv(const std::string& path);
+
+}  // namespace weir

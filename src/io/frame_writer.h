@@ -1,0 +1,52 @@
+// FrameWriter: writes numbered particle frames in one format, with a .pvd series and frames.json.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+
+#include "io/io_error.h"
+#include "io/pvd_writer.h"
+#include "solver/particles.h"
+
+namespace weir {
+
+enum class FrameFormat { Vtu, Ply, Csv };
+
+// "vtu", "ply" or "csv"; anything else throws std::invalid_argument naming the value and the
+// allowed list.
+FrameFormat parseFrameFormat(const std::string& text);
+// The file extension without the dot, also the format's name in frames.json: "vtu", "ply", "csv".
+std::string formatExtension(FrameFormat format);
+
+// Writes frame files <dir>/<baseName>_00000.<ext> (five digits, more when needed), each
+// atomically. After every frame it also rewrites, atomically, <dir>/frames.json:
+//   {"format": "vtu", "count": 2, "frames": [{"index": 0, "time": 0.0, "file": "frame_00000.vtu"},
+//    ...]}
+// (frames sorted by index, file names relative to dir), and for vtu <dir>/<baseName>.pvd.
+class FrameWriter {
+   public:
+    // Creates dir and its parents; throws IoError if that is impossible.
+    FrameWriter(std::string dir, FrameFormat format, std::string baseName = "frame");
+
+    // Writes frame frameIndex (>= 0, else std::invalid_argument) at simulation time `time`;
+    // writing an index again replaces that frame. Throws IoError when a file cannot be written.
+    void write(int frameIndex, double time, const HostParticles& particles);
+
+    std::string framePath(int frameIndex) const;
+    const std::string& dir() const { return dir_; }
+    FrameFormat format() const { return format_; }
+    std::string indexPath() const;  // <dir>/frames.json
+
+   private:
+    std::string frameFileName(int frameIndex) const;
+    void writeIndex() const;
+
+    std::string dir_;
+    FrameFormat format_;
+    std::string baseName_;
+    std::optional<PvdCollection> pvd_;                      // vtu only
+    std::map<int, std::pair<double, std::string>> frames_;  // index -> (time, file name)
+};
+
+}  // namespace weir
