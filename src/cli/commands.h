@@ -25,7 +25,20 @@ struct RunOptions {
     bool quiet = false;
 };
 
+struct BenchOptions {
+    std::string scene;                   // file or built-in name; empty: dam break
+    std::string sizes = "10k,50k,100k";  // particle counts, k/M suffixes allowed
+    std::string columns = "auto";        // cpu-brute,cpu-grid,cuda-brute,cuda-grid or auto
+    int steps = 20;                      // timed steps (median per stage)
+    int warmup = 3;                      // untimed steps before timing
+    double settle = 0.1;                 // simulated seconds before timing: a fluid in motion
+    double budget = 60;                  // seconds per (size, column); longer runs are skipped
+    std::string outDir = "bench-out";
+    bool noPlot = false;
+};
+
 int runCommand(const RunOptions& options);
+int benchCommand(const BenchOptions& options);
 int infoCommand();
 
 }  // namespace weir

@@ -38,6 +38,34 @@ int main(int argc, char** argv) {
     runCmd->add_flag("--explain", run.explain, "Print the derived parameters and why");
     runCmd->add_flag("--quiet,-q", run.quiet, "No progress line");
 
+    BenchOptions bench;
+    CLI::App* benchCmd = app.add_subcommand(
+        "bench", "Time every stage of the step: the paper's Tables 1-3 on this machine");
+    benchCmd->add_option("scene", bench.scene, "Scene file or built-in scene; default dam_break");
+    benchCmd->add_option("--sizes", bench.sizes, "Particle counts, e.g. 10k,50k,100k,1M")
+        ->capture_default_str();
+    benchCmd->add_option("--backends,--columns", bench.columns,
+                         "auto, or a list of cpu-brute, cpu-grid, cuda-brute, cuda-grid")
+        ->capture_default_str();
+    benchCmd->add_option("--steps", bench.steps, "Timed steps; stage times are their medians")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    benchCmd->add_option("--warmup", bench.warmup, "Untimed steps before timing")
+        ->check(CLI::Range(0, 100000))
+        ->capture_default_str();
+    benchCmd->add_option("--settle", bench.settle,
+                         "Simulated seconds before timing, so the fluid is in motion")
+        ->check(CLI::Range(0.0, 100.0))
+        ->capture_default_str();
+    benchCmd->add_option("--budget", bench.budget,
+                         "Seconds allowed per size and column; slower runs are skipped, never "
+                         "extrapolated")
+        ->check(CLI::Range(0.0, 1e6))
+        ->capture_default_str();
+    benchCmd->add_option("--out,-o", bench.outDir, "Directory for bench.json, bench.csv, bench.png")
+        ->capture_default_str();
+    benchCmd->add_flag("--no-plot", bench.noPlot, "Skip the PNG plot");
+
     app.add_subcommand("info", "Show the build, the backends and the GPU found");
 
     try {
@@ -54,6 +82,9 @@ int main(int argc, char** argv) {
     }
     if (runCmd->parsed()) {
         return runCommand(run);
+    }
+    if (benchCmd->parsed()) {
+        return benchCommand(bench);
     }
     return infoCommand();
 }

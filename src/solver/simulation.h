@@ -46,6 +46,9 @@ class Simulation {
     virtual FaultRecord fault() = 0;
     // Waits for queued device work.
     virtual void synchronize() = 0;
+    // Runs one stage of the step alone (for stage benchmarks); asynchronous like advance().
+    enum class Stage { Grid, Density, Force, Integrate };
+    virtual void runStage(Stage stage) = 0;
 
     // Per-stage timing; when on, each step's stage times are recorded (this synchronizes).
     virtual void setTiming(bool on) = 0;

@@ -61,6 +61,33 @@ class SphSolver final : public Simulation {
         }
     }
 
+    void runStage(Stage stage) override {
+        switch (stage) {
+            case Stage::Grid:
+                if (mode_ == NeighbourMode::Grid) {
+                    buildGrid();
+                }
+                break;
+            case Stage::Density:
+                if (mode_ == NeighbourMode::Grid) {
+                    computeDensityPressure(grid_.view());
+                } else {
+                    computeDensityPressure(BruteNeighbours{n_});
+                }
+                break;
+            case Stage::Force:
+                if (mode_ == NeighbourMode::Grid) {
+                    computeAcceleration(grid_.view());
+                } else {
+                    computeAcceleration(BruteNeighbours{n_});
+                }
+                break;
+            case Stage::Integrate:
+                integrate();
+                break;
+        }
+    }
+
     // One step, paper §5-6: separate stages launched in sequence.
     void step() {
         if (mode_ == NeighbourMode::Grid) {

@@ -1,0 +1,381 @@
+// `weir bench`: the paper's Tables 1-3 (per-stage times of CPU, GPU and optimized GPU) on this
+// machine, at any particle counts, as terminal tables, CSV, JSON and a plot.
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "cli/commands.h"
+#include "core/check.h"
+#include "core/exec_cpu.h"
+#include "grid/neighbour_grid.h"
+#include "io/atomic_file.h"
+#include "scene/scene.h"
+#include "scene/setup.h"
+
+namespace weir {
+
+namespace {
+
+struct Column {
+    std::string name;   // cpu-brute, cpu-grid, cuda-brute, cuda-grid
+    std::string title;  // as in the paper's tables
+    Backend backend;
+    NeighbourMode mode;
+};
+
+const std::vector<Column>& allColumns() {
+    static const std::vector<Column> columns = {
+        {"cpu-brute", "CPU", Backend::Cpu, NeighbourMode::Brute},
+        {"cpu-grid", "CPU grid", Backend::Cpu, NeighbourMode::Grid},
+        {"cuda-brute", "GPU", Backend::Cuda, NeighbourMode::Brute},
+        {"cuda-grid", "Optimized GPU", Backend::Cuda, NeighbourMode::Grid},
+    };
+    return columns;
+}
+
+// Stages in the paper's row order, with the paper's names.
+const std::vector<std::pair<std::string, std::string>> kStageRows = {
+    {"grid", "Grid construction"},
+    {"density", "Pressure computation"},
+    {"force", "Force computation"},
+    {"integrate", "Displacement computation"},
+};
+
+std::int64_t parseCount(const std::string& text) {
+    std::size_t used = 0;
+    double value = std::stod(text, &used);
+    std::string suffix = text.substr(used);
+    if (suffix == "k" || suffix == "K") {
+        value *= 1e3;
+    } else if (suffix == "m" || suffix == "M") {
+        value *= 1e6;
+    } else if (suffix == "g" || suffix == "G" || suffix == "b" || suffix == "B") {
+        value *= 1e9;
+    } else if (!suffix.empty()) {
+        throw std::invalid_argument("bad particle count '" + text + "': use e.g. 10000, 50k, 1M");
+    }
+    if (value < 1 || value > 2147483647.0) {
+        throw std::invalid_argument("particle count '" + text + "' out of range [1, 2147483647]");
+    }
+    return std::int64_t(value);
+}
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> items;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) {
+        if (!item.empty()) {
+            items.push_back(item);
+        }
+    }
+    return items;
+}
+
+// Mean number of neighbours within h (the particle itself excluded), on the host.
+double neighboursPerParticle(const HostParticles& p, const GridSpec& spec, Real h) {
+    const Index n = Index(p.size());
+    CpuExec exec;
+    NeighbourGrid<CpuExec> grid(spec);
+    grid.build(exec, p.x.data(), p.y.data(), p.z.data(), n);
+    const Index* order = grid.permutation();
+    std::vector<Real> x(n), y(n), z(n);
+    for (Index i = 0; i < n; ++i) {
+        x[i] = p.x[order[i]];
+        y[i] = p.y[order[i]];
+        z[i] = p.z[order[i]];
+    }
+    GridNeighbours view = grid.view();
+    double total = 0;
+#pragma omp parallel for reduction(+ : total)
+    for (Index i = 0; i < n; ++i) {
+        long count = 0;
+        view.forEachCandidate(i, [&](Index j) {
+            Real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
+            count += (j != i && dx * dx + dy * dy + dz * dz < h * h) ? 1 : 0;
+        });
+        total += double(count);
+    }
+    return n > 0 ? total / n : 0.0;
+}
+
+std::string nowUtc() {
+    std::time_t t = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+    return buf;
+}
+
+std::string fixed(double v, int digits) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+    return buf;
+}
+
+}  // namespace
+
+int benchCommand(const BenchOptions& options) {
+    try {
+        Scene scene = options.scene.empty() ? builtinScene("dam_break")
+                                            : (std::filesystem::exists(options.scene)
+                                                   ? loadScene(options.scene)
+                                                   : builtinScene(options.scene));
+        std::vector<std::int64_t> sizes;
+        for (const std::string& s : splitList(options.sizes)) {
+            sizes.push_back(parseCount(s));
+        }
+        const bool gpu = cudaDeviceAvailable();
+        std::vector<Column> columns;
+        std::vector<std::string> wanted = splitList(options.columns);
+        for (const Column& c : allColumns()) {
+            bool asked = options.columns == "auto"
+                             ? (c.backend == Backend::Cpu || gpu)
+                             : std::find(wanted.begin(), wanted.end(), c.name) != wanted.end();
+            if (asked) {
+                columns.push_back(c);
+            }
+        }
+        for (const std::string& w : wanted) {
+            if (w != "auto" && std::none_of(allColumns().begin(), allColumns().end(),
+                                            [&](const Column& c) { return c.name == w; })) {
+                throw std::invalid_argument("unknown bench column '" + w +
+                                            "': allowed are cpu-brute, cpu-grid, cuda-brute, "
+                                            "cuda-grid, auto");
+            }
+        }
+        if (columns.empty()) {
+            throw std::invalid_argument("no benchmark column to run (no GPU for cuda columns?)");
+        }
+
+        nlohmann::json record;
+        record["tool"] = "weir bench";
+        record["version"] = WEIR_VERSION;
+        record["commit"] = WEIR_COMMIT;
+        record["date"] = nowUtc();
+        record["scene"] = scene.name;
+        record["cpu"] = describeBackend(Backend::Cpu);
+        record["gpu"] = gpu ? describeBackend(Backend::Cuda) : "none";
+        record["precision"] = sizeof(Real) == 8 ? "double" : "float";
+        record["steps"] = options.steps;
+        record["warmupSteps"] = options.warmup;
+        record["settleSeconds"] = options.settle;
+        record["runs"] = nlohmann::json::array();
+        std::map<std::string, std::pair<double, double>> lastBrute;  // column -> (n, ms/step)
+
+        std::cerr << "weir bench: " << scene.name << ", columns";
+        for (const Column& c : columns) {
+            std::cerr << " " << c.name;
+        }
+        std::cerr << "; " << options.steps << " timed steps after " << options.warmup
+                  << " warm-up steps, from a fluid settled for " << options.settle << " s\n";
+
+        for (std::int64_t size : sizes) {
+            SetupOptions setupOptions;
+            setupOptions.particleCount = size;
+            SetupReport report;
+            SimulationSetup setup = buildSetup(scene, setupOptions, &report);
+            const Index n = Index(setup.particles.size());
+            // A fluid in motion: advance on the fastest backend, then start every column there.
+            {
+                auto mover = makeSimulation(gpu ? Backend::Cuda : Backend::Cpu,
+                                            NeighbourMode::Grid, setup);
+                int settleSteps = int(std::lround(options.settle / setup.params.timeStep));
+                mover->advance(settleSteps);
+                FaultRecord fault = mover->fault();
+                if (fault.code != 0) {
+                    throw SimulationError(describeFault(fault, mover->params()));
+                }
+                mover->download(setup.particles);
+            }
+            const double neighbours =
+                neighboursPerParticle(setup.particles, setup.grid, setup.params.kernel.h);
+            nlohmann::json run;
+            run["requested"] = size;
+            run["particles"] = n;
+            run["spacing"] = report.spacing;
+            run["smoothingRadius"] = report.smoothingRadius;
+            run["smoothingRatio"] = scene.smoothingRatio;
+            run["timeStep"] = setup.params.timeStep;
+            run["stiffness"] = setup.params.stiffness;
+            run["viscosity"] = setup.params.viscosity;
+            run["mass"] = setup.params.mass;
+            run["neighboursPerParticle"] = neighbours;
+            run["gridCells"] = {setup.grid.dims[0], setup.grid.dims[1], setup.grid.dims[2]};
+            run["columns"] = nlohmann::json::object();
+
+            for (const Column& column : columns) {
+                nlohmann::json result;
+                result["title"] = column.title;
+                auto skip = [&](const std::string& why) {
+                    result["skipped"] = why;
+                    std::cerr << "  " << n << " " << column.name << ": skipped, " << why << "\n";
+                };
+                const int totalSteps = options.warmup + options.steps;
+                auto it = lastBrute.find(column.name);
+                if (column.mode == NeighbourMode::Brute && it != lastBrute.end()) {
+                    double scale = double(n) / it->second.first;
+                    double estimate = it->second.second * scale * scale * totalSteps / 1000.0;
+                    if (estimate > options.budget) {
+                        skip("estimated " + fixed(estimate, 0) + " s > budget " +
+                             fixed(options.budget, 0) + " s (O(N^2))");
+                        run["columns"][column.name] = result;
+                        continue;
+                    }
+                }
+                std::unique_ptr<Simulation> sim;
+                try {
+                    sim = makeSimulation(column.backend, column.mode, setup);
+                } catch (const SimulationError& e) {
+                    skip(e.what());
+                    run["columns"][column.name] = result;
+                    continue;
+                }
+                auto start = std::chrono::steady_clock::now();
+                sim->advance(1);
+                sim->synchronize();
+                double firstMs = std::chrono::duration<double, std::milli>(
+                                     std::chrono::steady_clock::now() - start)
+                                     .count();
+                if (firstMs * totalSteps / 1000.0 > options.budget) {
+                    skip("one step took " + fixed(firstMs / 1000, 1) + " s, " +
+                         std::to_string(totalSteps) + " steps exceed the budget of " +
+                         fixed(options.budget, 0) + " s");
+                    if (column.mode == NeighbourMode::Brute) {
+                        lastBrute[column.name] = {double(n), firstMs};
+                    }
+                    run["columns"][column.name] = result;
+                    continue;
+                }
+                sim->advance(options.warmup);
+                sim->synchronize();
+                sim->setTiming(true);
+                sim->clearStageTimes();
+                sim->advance(options.steps);
+                sim->synchronize();
+                const StageTimes& times = sim->stageTimes();
+                double total = 0;
+                for (const auto& [stage, title] : kStageRows) {
+                    double ms = times.median(stage);
+                    result["stages"][stage] = ms;
+                    total += ms;
+                }
+                result["totalMs"] = total;
+                result["bytesPerParticle"] = double(sim->bytesHeld()) / double(n);
+                result["occupiedCells"] = sim->occupiedCells();
+                result["device"] = sim->deviceName();
+                if (sim->fault().code != 0) {
+                    result["fault"] = describeFault(sim->fault(), sim->params());
+                }
+                if (column.mode == NeighbourMode::Brute) {
+                    lastBrute[column.name] = {double(n), total};
+                }
+                std::cerr << "  " << n << " " << column.name << ": " << fixed(total, 4)
+                          << " ms/step\n";
+                run["columns"][column.name] = result;
+            }
+            record["runs"].push_back(run);
+        }
+
+        // Terminal tables in the paper's layout.
+        const std::string baseline = "cpu-brute";
+        for (const auto& run : record["runs"]) {
+            std::printf("\nTable: computation time and speedup for %lld particles (time in ms, "
+                        "%.1f neighbours per particle)\n",
+                        (long long)run["particles"].get<std::int64_t>(),
+                        run["neighboursPerParticle"].get<double>());
+            std::printf("%-26s", "Operations");
+            for (const Column& c : columns) {
+                std::printf("%16s", c.title.c_str());
+            }
+            std::printf("\n");
+            auto cell = [&](const Column& c, const std::string& stage) -> std::string {
+                const auto& r = run["columns"][c.name];
+                if (r.contains("skipped")) {
+                    return "skipped";
+                }
+                return fixed(stage.empty() ? r["totalMs"].get<double>()
+                                           : r["stages"][stage].get<double>(),
+                             4);
+            };
+            for (const auto& [stage, title] : kStageRows) {
+                std::printf("%-26s", title.c_str());
+                for (const Column& c : columns) {
+                    std::printf("%16s", cell(c, stage).c_str());
+                }
+                std::printf("\n");
+            }
+            std::printf("%-26s", "Total time");
+            for (const Column& c : columns) {
+                std::printf("%16s", cell(c, "").c_str());
+            }
+            std::printf("\n%-26s", "Speedup over CPU");
+            const auto& base = run["columns"].value(baseline, nlohmann::json::object());
+            for (const Column& c : columns) {
+                const auto& r = run["columns"][c.name];
+                if (base.contains("totalMs") && r.contains("totalMs")) {
+                    std::printf("%16s",
+                                fixed(base["totalMs"].get<double>() / r["totalMs"].get<double>(),
+                                      2)
+                                    .c_str());
+                } else {
+                    std::printf("%16s", "-");
+                }
+            }
+            std::printf("\n");
+        }
+
+        std::filesystem::create_directories(options.outDir);
+        const std::string jsonPath = options.outDir + "/bench.json";
+        const std::string csvPath = options.outDir + "/bench.csv";
+        writeFileAtomically(jsonPath, [&](std::ostream& out) { out << record.dump(2) << "\n"; });
+        writeFileAtomically(csvPath, [&](std::ostream& out) {
+            out << "particles,neighbours_per_particle,column,stage,ms,skipped\n";
+            for (const auto& run : record["runs"]) {
+                for (const auto& [name, r] : run["columns"].items()) {
+                    auto row = [&](const std::string& stage, double ms) {
+                        out << run["particles"].get<std::int64_t>() << ","
+                            << run["neighboursPerParticle"].get<double>() << "," << name << ","
+                            << stage << "," << ms << "," << (r.contains("skipped") ? 1 : 0)
+                            << "\n";
+                    };
+                    if (r.contains("skipped")) {
+                        row("total", 0);
+                        continue;
+                    }
+                    for (const auto& [stage, title] : kStageRows) {
+                        row(stage, r["stages"][stage].get<double>());
+                    }
+                    row("total", r["totalMs"].get<double>());
+                }
+            }
+        });
+        std::cerr << "weir bench: wrote " << jsonPath << " and " << csvPath << "\n";
+        if (!options.noPlot) {
+            const std::string script = std::string(WEIR_SOURCE_DIR_PATH) + "/bench/plot.py";
+            const std::string command = "python3 '" + script + "' '" + jsonPath + "' '" +
+                                        options.outDir + "/bench.png' 2>&1";
+            if (std::filesystem::exists(script) && std::system(command.c_str()) == 0) {
+                std::cerr << "weir bench: wrote " << options.outDir << "/bench.png\n";
+            } else {
+                std::cerr << "weir bench: no plot (needs python3 with matplotlib: "
+                             "pip install matplotlib; then python3 bench/plot.py "
+                          << jsonPath << " out.png)\n";
+            }
+        }
+        return kExitOk;
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "weir: error: " << e.what() << "\n";
+        return kExitUsage;
+    } catch (const std::exception& e) {
+        std::cerr << "weir: error: " << e.what() << "\n";
+        return kExitError;
+    }
+}
+
+}  // namespace weir
