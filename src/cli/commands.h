@@ -16,7 +16,7 @@ constexpr int kExitBlowUp = 3;    // the simulation blew up; frames already writ
 struct RunOptions {
     std::string scene;  // file path or built-in name; empty: the built-in dam break
     std::string backend = "auto";
-    std::string neighbours = "grid";
+    std::string neighbours = "auto";
     std::optional<std::int64_t> particles;
     std::optional<std::int64_t> frames;
     std::string outDir;  // empty: out/<scene name>
@@ -28,7 +28,7 @@ struct RunOptions {
 struct BenchOptions {
     std::string scene;                   // file or built-in name; empty: dam break
     std::string sizes = "10k,50k,100k";  // particle counts, k/M suffixes allowed
-    std::string columns = "auto";        // cpu-brute,cpu-grid,cuda-brute,cuda-grid or auto
+    std::string columns = "auto";        // cpu-brute,cpu-grid,...,cuda-dense or auto
     int steps = 20;                      // timed steps (median per stage)
     int warmup = 3;                      // untimed steps before timing
     double settle = 0.1;                 // simulated seconds before timing: a fluid in motion

@@ -24,8 +24,9 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
         ->capture_default_str();
     runCmd->add_option("--neighbours", run.neighbours,
-                       "grid (paper §6.2, O(N)) or brute (O(N^2), for comparison)")
-        ->check(CLI::IsMember({"grid", "brute"}))
+                       "auto, grid (paper §6.2 cell and neighbour tables), dense (same sort, "
+                       "dense cell table: faster) or brute (O(N^2), for comparison)")
+        ->check(CLI::IsMember({"auto", "grid", "dense", "brute"}))
         ->capture_default_str();
     runCmd->add_option("--particles,-n", run.particles, "Particle count (overrides the scene)")
         ->check(CLI::Range(std::int64_t(1), std::int64_t(2147483647)));
@@ -45,7 +46,8 @@ int main(int argc, char** argv) {
     benchCmd->add_option("--sizes", bench.sizes, "Particle counts, e.g. 10k,50k,100k,1M")
         ->capture_default_str();
     benchCmd->add_option("--backends,--columns", bench.columns,
-                         "auto, or a list of cpu-brute, cpu-grid, cuda-brute, cuda-grid")
+                         "auto, or a list of cpu-brute, cpu-grid, cpu-dense, cuda-brute, "
+                         "cuda-grid, cuda-dense")
         ->capture_default_str();
     benchCmd->add_option("--steps", bench.steps, "Timed steps; stage times are their medians")
         ->check(CLI::Range(1, 100000))

@@ -38,7 +38,9 @@ int runCommand(const RunOptions& options) {
         SetupReport report;
         SimulationSetup setup = buildSetup(scene, setupOptions, &report);
         const Backend backend = parseBackend(options.backend);
-        const NeighbourMode mode = parseNeighbourMode(options.neighbours);
+        const NeighbourMode mode = resolveNeighbourMode(parseNeighbourMode(options.neighbours),
+                                                        setup.grid,
+                                                        std::int64_t(setup.particles.size()));
         const FrameFormat format = parseFrameFormat(options.format);
         const std::string outDir = options.outDir.empty() ? "out/" + scene.name : options.outDir;
         const std::int64_t frames =

@@ -71,6 +71,12 @@ void CpuExec::inclusiveScan(const Index* in, Index* out, Index n) {
     }
 }
 
+void CpuExec::inclusiveMaxScan(Index* data, Index n) {
+    for (Index i = 1; i < n; ++i) {
+        data[i] = std::max(data[i], data[i - 1]);
+    }
+}
+
 void CpuExec::stageBegin(const char*) {
     if (timing) {
         stageStart_ = std::chrono::steady_clock::now();

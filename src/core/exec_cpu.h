@@ -35,6 +35,7 @@ class CpuExec {
     template <class T>
     using Buffer = HostBuffer<T>;
     static constexpr bool isDevice = false;
+    struct Graph {};  // the CPU runs steps directly
 
     // Runs f(i) for i in [0, n) on all cores.
     template <class F>
@@ -50,6 +51,8 @@ class CpuExec {
                    Index n, int keyBits);
     // out[i] = in[0] + ... + in[i]; in and out may alias.
     void inclusiveScan(const Index* in, Index* out, Index n);
+    // data[i] = max(data[0], ..., data[i]), in place.
+    void inclusiveMaxScan(Index* data, Index n);
 
     template <class T>
     void upload(Buffer<T>& dst, const T* src, std::size_t n) const {

@@ -2,6 +2,8 @@
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
 
+#include <cuda/functional>
+
 #include <sstream>
 
 #include "core/exec_cuda.cuh"
@@ -40,6 +42,18 @@ void CudaExec::inclusiveScan(const Index* in, Index* out, Index n) {
     }
     bytes = scanTemp_.size();
     WEIR_CUDA_CHECK(cub::DeviceScan::InclusiveSum(scanTemp_.data(), bytes, in, out, n, stream_));
+}
+
+void CudaExec::inclusiveMaxScan(Index* data, Index n) {
+    std::size_t bytes = 0;
+    WEIR_CUDA_CHECK(
+        cub::DeviceScan::InclusiveScan(nullptr, bytes, data, data, cuda::maximum<>{}, n, stream_));
+    if (scanTemp_.size() < bytes) {
+        scanTemp_.resize(bytes);
+    }
+    bytes = scanTemp_.size();
+    WEIR_CUDA_CHECK(cub::DeviceScan::InclusiveScan(scanTemp_.data(), bytes, data, data,
+                                                   cuda::maximum<>{}, n, stream_));
 }
 
 void CudaExec::download1(void* dst, const void* src, std::size_t bytes) {

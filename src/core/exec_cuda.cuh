@@ -68,8 +68,33 @@ __global__ void forEachKernel(Index n, F f) {
     }
 }
 
+// An instantiated CUDA graph, move-only.
+class CudaGraph {
+   public:
+    CudaGraph() = default;
+    CudaGraph(const CudaGraph&) = delete;
+    CudaGraph& operator=(const CudaGraph&) = delete;
+    ~CudaGraph() {
+        if (exec_ != nullptr) {
+            cudaGraphExecDestroy(exec_);
+        }
+    }
+    bool ready() const { return exec_ != nullptr; }
+    cudaGraphExec_t get() const { return exec_; }
+    void reset(cudaGraphExec_t e) {
+        if (exec_ != nullptr) {
+            cudaGraphExecDestroy(exec_);
+        }
+        exec_ = e;
+    }
+
+   private:
+    cudaGraphExec_t exec_ = nullptr;
+};
+
 class CudaExec {
    public:
+    using Graph = CudaGraph;
     template <class T>
     using Buffer = DeviceBuffer<T>;
     static constexpr bool isDevice = true;
@@ -90,7 +115,11 @@ class CudaExec {
         forEachKernel<<<blocks, kBlockSize, 0, stream_>>>(n, f);
         WEIR_CUDA_CHECK(cudaGetLastError());
 #ifndef NDEBUG
-        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+        cudaStreamCaptureStatus capturing = cudaStreamCaptureStatusNone;
+        WEIR_CUDA_CHECK(cudaStreamIsCapturing(stream_, &capturing));
+        if (capturing == cudaStreamCaptureStatusNone) {
+            WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+        }
 #endif
     }
 
@@ -99,6 +128,8 @@ class CudaExec {
                    Index n, int keyBits);
     // Inclusive prefix sum by CUB; in and out may alias.
     void inclusiveScan(const Index* in, Index* out, Index n);
+    // data[i] = max(data[0], ..., data[i]), in place, by CUB.
+    void inclusiveMaxScan(Index* data, Index n);
 
     template <class T>
     void upload(Buffer<T>& dst, const T* src, std::size_t n) {
@@ -126,6 +157,30 @@ class CudaExec {
         WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
     }
     void synchronize() { WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_)); }
+
+    // Records everything body() queues on this backend's stream into graph (nothing runs).
+    template <class Body>
+    void capture(Graph& graph, Body&& body) {
+        WEIR_CUDA_CHECK(cudaStreamBeginCapture(stream_, cudaStreamCaptureModeThreadLocal));
+        try {
+            body();
+        } catch (...) {
+            cudaGraph_t broken = nullptr;
+            cudaStreamEndCapture(stream_, &broken);
+            if (broken != nullptr) {
+                cudaGraphDestroy(broken);
+            }
+            throw;
+        }
+        cudaGraph_t recorded = nullptr;
+        WEIR_CUDA_CHECK(cudaStreamEndCapture(stream_, &recorded));
+        cudaGraphExec_t instance = nullptr;
+        cudaError_t status = cudaGraphInstantiate(&instance, recorded, 0);
+        cudaGraphDestroy(recorded);
+        WEIR_CUDA_CHECK(status);
+        graph.reset(instance);
+    }
+    void launch(const Graph& graph) { WEIR_CUDA_CHECK(cudaGraphLaunch(graph.get(), stream_)); }
 
     void stageBegin(const char* stage);
     void stageEnd(const char* stage);

@@ -64,4 +64,13 @@ WEIR_HD inline T length(const Vec3T<T>& a) {
 using Vec3 = Vec3T<Real>;
 using Vec3d = Vec3T<double>;
 
+// A 3-vector padded to 16 (float) or 32 (double) bytes, so that one particle's position or
+// velocity is one aligned vector load on the GPU. w is free for a scalar.
+struct alignas(4 * sizeof(Real)) Real4 {
+    Real x, y, z, w;
+
+    WEIR_HD Vec3 xyz() const { return {x, y, z}; }
+    WEIR_HD static Real4 from(const Vec3& v, Real w = 0) { return {v.x, v.y, v.z, w}; }
+};
+
 }  // namespace weir

@@ -8,25 +8,41 @@
 
 namespace weir {
 
-GridSpec makeGridSpec(const Vec3d& boxMin, const Vec3d& boxMax, double cellSize) {
+namespace {
+
+void checkAxes(const int dims[3], double cellSize, int maxCellsPerAxis) {
+    const char* axisName = "xyz";
+    for (int a = 0; a < 3; ++a) {
+        WEIR_REQUIRE(dims[a] <= maxCellsPerAxis,
+                     "the container needs " << dims[a] << " grid cells along " << axisName[a]
+                                            << " (cells of " << cellSize << " m), more than the "
+                                            << maxCellsPerAxis
+                                            << (maxCellsPerAxis == kMaxCellsPerAxis
+                                                    ? " that the 32-bit cell id of paper §6.2 holds"
+                                                    : " allowed")
+                                            << "; use fewer particles or a smaller container");
+    }
+}
+
+}  // namespace
+
+void checkPaperCellIdRange(const GridSpec& spec) {
+    checkAxes(spec.dims, double(spec.cellSize), kMaxCellsPerAxis);
+}
+
+GridSpec makeGridSpec(const Vec3d& boxMin, const Vec3d& boxMax, double cellSize,
+                      int maxCellsPerAxis) {
     WEIR_REQUIRE(cellSize > 0 && std::isfinite(cellSize),
                  "grid cell size must be a positive number, got " << cellSize);
     GridSpec spec;
     spec.origin = Vec3(boxMin);
     spec.cellSize = Real(cellSize);
     spec.inverseCellSize = Real(1.0 / cellSize);
-    const char* axisName = "xyz";
     for (int a = 0; a < 3; ++a) {
-        double extent = boxMax[a] - boxMin[a];
-        double cells = std::ceil(extent / cellSize - 1e-9);
-        WEIR_REQUIRE(cells <= kMaxCellsPerAxis,
-                     "the container needs " << cells << " grid cells along " << axisName[a]
-                                            << " (extent " << extent << " m / cell " << cellSize
-                                            << " m), more than the " << kMaxCellsPerAxis
-                                            << " that the 32-bit cell id of paper §6.2 holds; "
-                                               "use fewer particles or a smaller container");
-        spec.dims[a] = std::max(1, int(cells));
+        double cells = std::ceil((boxMax[a] - boxMin[a]) / cellSize - 1e-9);
+        spec.dims[a] = int(std::clamp(cells, 1.0, 2147483647.0));
     }
+    checkAxes(spec.dims, cellSize, maxCellsPerAxis);
     return spec;
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 
 #include "core/config.h"
 #include "core/vec3.h"
@@ -50,7 +51,17 @@ struct GridSpec {
     }
 };
 
-// Builds the grid spec for a box; throws SimulationError if an axis needs more than 1024 cells.
-GridSpec makeGridSpec(const Vec3d& boxMin, const Vec3d& boxMax, double cellSize);
+// Builds the grid spec for a box; throws SimulationError if an axis needs more than
+// maxCellsPerAxis cells (by default the 1024 of the paper's cell id).
+GridSpec makeGridSpec(const Vec3d& boxMin, const Vec3d& boxMax, double cellSize,
+                      int maxCellsPerAxis = kMaxCellsPerAxis);
+
+// Throws SimulationError if the grid does not fit the paper's 10-bit-per-axis cell ids.
+void checkPaperCellIdRange(const GridSpec& spec);
+
+// Cells in the whole grid.
+inline std::uint64_t totalCells(const GridSpec& spec) {
+    return std::uint64_t(spec.dims[0]) * std::uint64_t(spec.dims[1]) * std::uint64_t(spec.dims[2]);
+}
 
 }  // namespace weir

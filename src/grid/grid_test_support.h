@@ -5,11 +5,20 @@
 #include <vector>
 
 #include "core/config.h"
+#include "core/vec3.h"
 
 namespace weir::testing {
 
 struct Cloud {
     std::vector<Real> x, y, z;
+
+    std::vector<Real4> packed() const {
+        std::vector<Real4> pos(x.size());
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            pos[i] = {x[i], y[i], z[i], 0};
+        }
+        return pos;
+    }
 };
 
 // n uniform random points in [0, size)^3, a few of them exactly on the far walls.

@@ -10,6 +10,7 @@
 
 #include "core/config.h"
 #include "grid/cell_id.h"
+#include "grid/cell_sort.h"
 
 namespace weir {
 
@@ -74,58 +75,40 @@ WEIR_HD inline Index lowerBound(const CellKey* keys, Index n, CellKey key) {
     return lo;
 }
 
-// Grows a buffer to at least n elements, with headroom so that it rarely reallocates.
-template <class Buffer>
-void ensureCapacity(Buffer& buffer, std::size_t n) {
-    if (buffer.size() < n) {
-        buffer.resize(n + n / 4 + 16);
-    }
-}
-
 template <class Exec>
 class NeighbourGrid {
    public:
     template <class T>
     using Buffer = typename Exec::template Buffer<T>;
 
-    explicit NeighbourGrid(const GridSpec& spec) : spec_(spec) {}
+    // Throws SimulationError if the grid needs more than the paper's 1024 cells on an axis.
+    explicit NeighbourGrid(const GridSpec& spec) : spec_(spec) { checkPaperCellIdRange(spec); }
 
     // Sorts particles by cell and builds both tables. Afterwards permutation()[i] is the old index
     // of the particle that is i-th in cell order; the caller reorders its particle data by it.
-    void build(Exec& exec, const Real* x, const Real* y, const Real* z, Index n) {
+    void build(Exec& exec, const Real4* pos, Index n) {
         n_ = n;
-        for (auto* b : {&order_, &sortedOrder_, &particleCell_}) {
-            b->resize(n);
-        }
-        keys_.resize(n);
-        sortedKeys_.resize(n);
+        sort_.prepare(n);
+        particleCell_.resize(std::size_t(n));
         if (n == 0) {
             numCells_ = 0;
             return;
         }
-        assignCellIds(exec, x, y, z);
-        exec.sortPairs(keys_.data(), sortedKeys_.data(), order_.data(), sortedOrder_.data(), n,
-                       kCellKeyBits);
+        // Step 1: the cell id of every particle (paper Figure 3 layout).
+        GridSpec spec = spec_;
+        CellKey* keys = sort_.keys();
+        exec.forEach(n, [=] WEIR_HD(Index i) { keys[i] = spec.keyOf(pos[i].x, pos[i].y, pos[i].z); });
+        // Step 2: radix sort by cell id.
+        sort_.sort(exec, kCellKeyBits);
         buildCellTable(exec);
         buildNeighbourTable(exec);
-    }
-
-    // Step 1: cell id and identity index of every particle.
-    void assignCellIds(Exec& exec, const Real* x, const Real* y, const Real* z) {
-        GridSpec spec = spec_;
-        CellKey* keys = keys_.data();
-        Index* order = order_.data();
-        exec.forEach(n_, [=] WEIR_HD(Index i) {
-            keys[i] = spec.keyOf(x[i], y[i], z[i]);
-            order[i] = i;
-        });
     }
 
     // Step 3: head flags, their prefix sum (the cell index of each particle), then per cell its
     // id, first particle and count.
     void buildCellTable(Exec& exec) {
         const Index n = n_;
-        const CellKey* keys = sortedKeys_.data();
+        const CellKey* keys = sort_.sortedKeys();
         Index* particleCell = particleCell_.data();
         exec.forEach(n, [=] WEIR_HD(Index i) {
             particleCell[i] = (i == 0 || keys[i] != keys[i - 1]) ? 1 : 0;
@@ -189,13 +172,12 @@ class NeighbourGrid {
         return {particleCell_.data(), neighbourTable_.data(), cellStart_.data(),
                 cellCount_.data()};
     }
-    const Index* permutation() const { return sortedOrder_.data(); }
+    const Index* permutation() const { return sort_.permutation(); }
     const GridSpec& spec() const { return spec_; }
     Index numCells() const { return numCells_; }
     Index numParticles() const { return n_; }
 
     // Read access for tests and statistics.
-    const Buffer<CellKey>& sortedKeys() const { return sortedKeys_; }
     const Buffer<CellKey>& cellKeys() const { return cellKeys_; }
     const Buffer<Index>& cellStart() const { return cellStart_; }
     const Buffer<Index>& cellCount() const { return cellCount_; }
@@ -204,9 +186,9 @@ class NeighbourGrid {
 
     // Bytes of device (or host) memory held by the grid.
     std::size_t bytesHeld() const {
-        return keys_.size() * sizeof(CellKey) * 1 + sortedKeys_.size() * sizeof(CellKey) +
-               (order_.size() + sortedOrder_.size() + particleCell_.size() + cellStart_.size() +
-                cellCount_.size() + neighbourTable_.size()) *
+        return sort_.bytesHeld() +
+               (particleCell_.size() + cellStart_.size() + cellCount_.size() +
+                neighbourTable_.size()) *
                    sizeof(Index) +
                cellKeys_.size() * sizeof(CellKey);
     }
@@ -215,8 +197,9 @@ class NeighbourGrid {
     GridSpec spec_;
     Index n_ = 0;
     Index numCells_ = 0;
-    Buffer<CellKey> keys_, sortedKeys_, cellKeys_;
-    Buffer<Index> order_, sortedOrder_, particleCell_, cellStart_, cellCount_, neighbourTable_;
+    CellSort<Exec> sort_;
+    Buffer<CellKey> cellKeys_;
+    Buffer<Index> particleCell_, cellStart_, cellCount_, neighbourTable_;
 };
 
 }  // namespace weir

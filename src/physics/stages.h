@@ -12,16 +12,18 @@
 
 namespace weir {
 
-// Structure-of-arrays particle data, in the grid's cell order.
+// Structure-of-arrays particle data by attribute, in the grid's cell order. Vector attributes
+// are padded to four components: one aligned 16-byte load per neighbour on the GPU.
 struct ParticleView {
-    Real *x, *y, *z;
-    Real *vx, *vy, *vz;
-    Real *ax, *ay, *az;
-    Real *rho, *p;
+    Real4* pos;
+    Real4* vel;
+    Real4* acc;
+    Real* rho;
+    Real* p;
     Index count;
 
-    WEIR_HD Vec3 position(Index i) const { return {x[i], y[i], z[i]}; }
-    WEIR_HD Vec3 velocity(Index i) const { return {vx[i], vy[i], vz[i]}; }
+    WEIR_HD Vec3 position(Index i) const { return pos[i].xyz(); }
+    WEIR_HD Vec3 velocity(Index i) const { return vel[i].xyz(); }
 };
 
 struct ObstacleBox {
@@ -61,11 +63,10 @@ WEIR_HD inline bool claimFault(FaultRecord* record, FaultCode code) {
 template <class Neighbours>
 WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                       const SphParams& params) {
-    const Real xi = pv.x[i], yi = pv.y[i], zi = pv.z[i];
+    const Vec3 xi = pv.position(i);
     Real sum = 0;
     nb.forEachCandidate(i, [&](Index j) {
-        Real dx = xi - pv.x[j], dy = yi - pv.y[j], dz = zi - pv.z[j];
-        sum += poly6(params.kernel, dx * dx + dy * dy + dz * dz);
+        sum += poly6(params.kernel, lengthSquared(xi - pv.position(j)));
     });
     Real rho = params.mass * sum;
     pv.rho[i] = rho;
@@ -97,10 +98,7 @@ WEIR_HD inline void accelerationAt(Index i, const ParticleView& pv, const Neighb
                                pv.velocity(j));
         }
     });
-    Vec3 a = force / pv.rho[i] + params.gravity;
-    pv.ax[i] = a.x;
-    pv.ay[i] = a.y;
-    pv.az[i] = a.z;
+    pv.acc[i] = Real4::from(force / pv.rho[i] + params.gravity);
 }
 
 // Removes the part of v along unit normal n that points into the wall, keeping `restitution` of
@@ -175,7 +173,7 @@ WEIR_HD inline void collide(Vec3& x, Vec3& v, const SphParams& params, const Obs
 WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams& params,
                                 const ObstacleView& obstacles, FaultRecord* fault, int step) {
     Vec3 x = pv.position(i), v = pv.velocity(i);
-    const Vec3 a(pv.ax[i], pv.ay[i], pv.az[i]);
+    const Vec3 a = pv.acc[i].xyz();
     const Real dt = params.timeStep;
     if (params.integrator == IntegratorKind::SemiImplicitEuler) {
         v += a * dt;
@@ -203,12 +201,8 @@ WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams
         fault->particle = i;
         fault->value = float(std::sqrt(speed2));
     }
-    pv.x[i] = x.x;
-    pv.y[i] = x.y;
-    pv.z[i] = x.z;
-    pv.vx[i] = v.x;
-    pv.vy[i] = v.y;
-    pv.vz[i] = v.z;
+    pv.pos[i] = Real4::from(x);
+    pv.vel[i] = Real4::from(v);
 }
 
 }  // namespace weir

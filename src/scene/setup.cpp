@@ -309,7 +309,8 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     say("blow-up bound: speed > " + fmt(p.maxSpeed) + " m/s, NaN, or a particle outside the box");
 
     try {
-        setup.grid = makeGridSpec(scene.container.min, scene.container.max, h);
+        // The dense cell table takes grids past the paper's 1024 cells per axis.
+        setup.grid = makeGridSpec(scene.container.min, scene.container.max, h, 1 << 20);
     } catch (const std::exception& e) {
         throw SceneError(where + ": " + e.what());
     }

@@ -6,6 +6,7 @@
 
 #include "core/check.h"
 #include "core/exec_cpu.h"
+#include "grid/dense_grid.h"
 
 namespace weir {
 
@@ -18,24 +19,51 @@ NeighbourMode parseNeighbourMode(const std::string& name) {
     if (name == "grid") {
         return NeighbourMode::Grid;
     }
+    if (name == "dense") {
+        return NeighbourMode::Dense;
+    }
     if (name == "brute") {
         return NeighbourMode::Brute;
     }
-    throw std::invalid_argument("unknown neighbour search '" + name + "': allowed are grid, brute");
+    if (name == "auto") {
+        return NeighbourMode::Auto;
+    }
+    throw std::invalid_argument("unknown neighbour search '" + name +
+                                "': allowed are auto, grid, dense, brute");
 }
 
 const char* neighbourModeName(NeighbourMode mode) {
-    return mode == NeighbourMode::Grid ? "grid" : "brute";
+    switch (mode) {
+        case NeighbourMode::Grid:
+            return "grid";
+        case NeighbourMode::Dense:
+            return "dense";
+        case NeighbourMode::Brute:
+            return "brute";
+        default:
+            return "auto";
+    }
+}
+
+NeighbourMode resolveNeighbourMode(NeighbourMode mode, const GridSpec& grid, std::int64_t n) {
+    if (mode != NeighbourMode::Auto) {
+        return mode;
+    }
+    return denseGridSuits(grid, n) ? NeighbourMode::Dense : NeighbourMode::Grid;
 }
 
 std::size_t bytesPerParticleEstimate(NeighbourMode mode) {
-    // 11 attribute arrays (x, v, a, rho, p) and the id.
-    std::size_t bytes = 11 * sizeof(Real) + sizeof(Index);
+    // Position, velocity, acceleration (padded vectors), density, pressure, id.
+    std::size_t bytes = 3 * sizeof(Real4) + 2 * sizeof(Real) + sizeof(Index);
+    if (mode != NeighbourMode::Brute) {
+        // Reorder scratch (position, velocity, id), keys and values twice (sort), 25% headroom.
+        bytes += 2 * sizeof(Real4) + sizeof(Index) + (4 * 4) * 5 / 4;
+    }
     if (mode == NeighbourMode::Grid) {
-        // Reorder scratch (6 reals, id), keys and values twice, cell of each particle,
-        // and cell tables for up to one occupied cell per two particles with 25% headroom.
-        bytes += 6 * sizeof(Real) + sizeof(Index) + 4 * 4 + sizeof(Index);
-        bytes += (3 * 4 + 27 * sizeof(Index)) * 5 / 8;
+        // Cell of each particle; cell tables for up to one occupied cell per two particles.
+        bytes += sizeof(Index) * 5 / 4 + (3 * 4 + 27 * sizeof(Index)) * 5 / 8;
+    } else if (mode != NeighbourMode::Brute) {
+        bytes += 8 * sizeof(Index);  // dense bounds, at most 8 cells per particle
     }
     return bytes;
 }
@@ -58,6 +86,7 @@ void checkMemoryFits(Index count, NeighbourMode mode, std::size_t freeBytes,
 
 std::unique_ptr<Simulation> makeSimulation(Backend backend, NeighbourMode mode,
                                            SimulationSetup setup) {
+    mode = resolveNeighbourMode(mode, setup.grid, std::int64_t(setup.particles.size()));
     if (backend == Backend::Cpu) {
         checkMemoryFits(Index(setup.particles.size()), mode, CpuExec().freeMemoryBytes(),
                         "host memory");

@@ -15,9 +15,14 @@
 
 namespace weir {
 
-enum class NeighbourMode { Grid, Brute };
+// Grid: the sorted grid with the paper's cell table and 26-neighbour table (§6.2).
+// Dense: the same sort with a dense table over every cell (grid/dense_grid.h), faster.
+// Brute: O(N^2). Auto: Dense where its table is small enough, else Grid.
+enum class NeighbourMode { Grid, Dense, Brute, Auto };
 
 NeighbourMode parseNeighbourMode(const std::string& name);
+// Auto made concrete for a setup.
+NeighbourMode resolveNeighbourMode(NeighbourMode mode, const GridSpec& grid, std::int64_t n);
 const char* neighbourModeName(NeighbourMode mode);
 
 // Everything a backend needs to start: parameters, grid, obstacles and the initial particles.

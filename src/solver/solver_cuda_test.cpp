@@ -14,12 +14,14 @@ using namespace weir::testing;
         GTEST_SKIP() << "no CUDA device visible";           \
     }
 
-TEST(CudaSolver, AgreesWithCpuAfterManySteps) {
+class CudaModes : public ::testing::TestWithParam<NeighbourMode> {};
+
+TEST_P(CudaModes, AgreesWithCpuAfterManySteps) {
     SKIP_WITHOUT_GPU();
     Scene scene = smallDamBreak(4000);
     SetupReport report;
-    auto cpu = start(scene, Backend::Cpu, NeighbourMode::Grid, &report);
-    auto gpu = start(scene, Backend::Cuda, NeighbourMode::Grid);
+    auto cpu = start(scene, Backend::Cpu, GetParam(), &report);
+    auto gpu = start(scene, Backend::Cuda, GetParam());
     const int steps = 300;
     HostParticles a = stateAfter(*cpu, steps), b = stateAfter(*gpu, steps);
     ASSERT_EQ(gpu->fault().code, 0);
@@ -29,14 +31,49 @@ TEST(CudaSolver, AgreesWithCpuAfterManySteps) {
     EXPECT_GT(maxSpeed(b), 0.3);
 }
 
-TEST(CudaSolver, GridAndBruteForceAgree) {
+TEST_P(CudaModes, GridAndBruteForceAgree) {
     SKIP_WITHOUT_GPU();
     Scene scene = smallDamBreak(3000);
     SetupReport report;
-    auto grid = start(scene, Backend::Cuda, NeighbourMode::Grid, &report);
+    auto grid = start(scene, Backend::Cuda, GetParam(), &report);
     auto brute = start(scene, Backend::Cuda, NeighbourMode::Brute);
     HostParticles a = stateAfter(*grid, 60), b = stateAfter(*brute, 60);
     EXPECT_LT(maxPositionDifference(a, b), 1e-4 * report.spacing);
+}
+
+INSTANTIATE_TEST_SUITE_P(Tables, CudaModes,
+                         ::testing::Values(NeighbourMode::Grid, NeighbourMode::Dense));
+
+TEST(CudaSolver, GraphReplayMatchesSingleSteps) {
+    SKIP_WITHOUT_GPU();
+    // advance(n) replays a captured pair of steps; it must equal n single steps bit for bit,
+    // and a fault inside a replay must carry the right step number.
+    Scene scene = smallDamBreak(3000);
+    auto a = start(scene, Backend::Cuda, NeighbourMode::Dense);
+    auto b = start(scene, Backend::Cuda, NeighbourMode::Dense);
+    a->advance(41);
+    for (int i = 0; i < 41; ++i) {
+        b->advance(1);
+    }
+    HostParticles pa, pb;
+    a->download(pa);
+    b->download(pb);
+    EXPECT_EQ(pa.x, pb.x);
+    EXPECT_EQ(pa.vz, pb.vz);
+    EXPECT_EQ(pa.rho, pb.rho);
+    EXPECT_EQ(a->stepCount(), 41);
+
+    Scene bad = smallDamBreak(1500);
+    bad.timeStep = 0.005;
+    bad.stiffness = 1e5;
+    auto graphed = start(bad, Backend::Cuda, NeighbourMode::Dense);
+    auto stepped = start(bad, Backend::Cuda, NeighbourMode::Dense);
+    graphed->advance(60);
+    for (int i = 0; i < 60; ++i) {
+        stepped->advance(1);
+    }
+    ASSERT_NE(graphed->fault().code, 0);
+    EXPECT_EQ(graphed->fault().step, stepped->fault().step);
 }
 
 TEST(CudaSolver, BlowUpIsDetectedOnTheGpu) {
@@ -45,6 +82,9 @@ TEST(CudaSolver, BlowUpIsDetectedOnTheGpu) {
     scene.timeStep = 0.005;  // 20x the CFL limit for this stiffness
     scene.stiffness = 1e5;
     auto sim = start(scene, Backend::Cuda, NeighbourMode::Grid);
+    sim->advance(50);
+    EXPECT_NE(sim->fault().code, 0);
+    sim = start(scene, Backend::Cuda, NeighbourMode::Dense);
     sim->advance(50);
     EXPECT_NE(sim->fault().code, 0);
 }
@@ -59,7 +99,7 @@ TEST(CudaSolver, ConservesMomentum) {
         "particles": {"count": 20000}
     })",
                              "<test collision>");
-    auto sim = start(scene, Backend::Cuda, NeighbourMode::Grid);
+    auto sim = start(scene, Backend::Cuda, NeighbourMode::Auto);
     HostParticles before;
     sim->download(before);
     HostParticles after = stateAfter(*sim, 400);

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <utility>
 
+#include "grid/dense_grid.h"
 #include "grid/neighbour_grid.h"
 #include "physics/stages.h"
 #include "solver/simulation.h"
@@ -19,84 +20,95 @@ class SphSolver final : public Simulation {
     using Buffer = typename Exec::template Buffer<T>;
 
     SphSolver(NeighbourMode mode, SimulationSetup setup)
-        : mode_(mode), params_(setup.params), grid_(setup.grid) {
+        : mode_(mode),
+          params_(setup.params),
+          sparse_(mode == NeighbourMode::Grid ? setup.grid : GridSpec{}),
+          dense_(setup.grid) {
         const HostParticles& host = setup.particles;
         n_ = Index(host.size());
+        std::vector<Real4> pos(n_), vel(n_);
         std::vector<Index> ids(n_);
-        std::iota(ids.begin(), ids.end(), Index(0));
-        exec_.upload(x_, host.x.data(), n_);
-        exec_.upload(y_, host.y.data(), n_);
-        exec_.upload(z_, host.z.data(), n_);
-        exec_.upload(vx_, host.vx.data(), n_);
-        exec_.upload(vy_, host.vy.data(), n_);
-        exec_.upload(vz_, host.vz.data(), n_);
-        exec_.upload(id_, ids.data(), n_);
-        for (auto* b : {&ax_, &ay_, &az_, &rho_, &p_}) {
-            b->resize(n_);
+        for (Index i = 0; i < n_; ++i) {
+            pos[i] = {host.x[i], host.y[i], host.z[i], 0};
+            vel[i] = {host.vx[i], host.vy[i], host.vz[i], 0};
+            ids[i] = i;
         }
-        if (mode_ == NeighbourMode::Grid) {
-            for (auto& b : scratch_) {
-                b.resize(n_);
-            }
-            scratchId_.resize(n_);
+        exec_.upload(pos_, pos.data(), n_);
+        exec_.upload(vel_, vel.data(), n_);
+        exec_.upload(id_, ids.data(), n_);
+        acc_.resize(n_);
+        rho_.resize(n_);
+        p_.resize(n_);
+        if (mode_ != NeighbourMode::Brute) {
+            sortedPos_.resize(n_);
+            sortedVel_.resize(n_);
+            sortedId_.resize(n_);
         }
         exec_.upload(boxes_, setup.obstacleBoxes.data(), setup.obstacleBoxes.size());
         exec_.upload(spheres_, setup.obstacleSpheres.data(), setup.obstacleSpheres.size());
         FaultRecord none{0, 0, 0, 0.0f};
         exec_.upload(fault_, &none, 1);
+        int zero = 0;
+        exec_.upload(stepCounter_, &zero, 1);
     }
 
     void advance(int steps) override {
-        for (int s = 0; s < steps; ++s) {
+        if constexpr (Exec::isDevice) {
+            // With no host round trip inside a step, a pair of steps replays as one CUDA graph.
+            if (mode_ != NeighbourMode::Grid && !exec_.timing && steps >= 4) {
+                if ((steps_ & 1) != 0) {
+                    step();
+                    --steps;
+                }
+                if (!graph_.ready()) {
+                    exec_.capture(graph_, [&] {
+                        step();
+                        step();
+                    });
+                    steps_ -= 2;  // capturing does not run the steps
+                }
+                for (; steps >= 2; steps -= 2) {
+                    exec_.launch(graph_);
+                    steps_ += 2;
+                }
+            }
+        }
+        for (; steps > 0; --steps) {
             step();
         }
     }
 
     void computeDensity() override {
-        if (mode_ == NeighbourMode::Grid) {
-            buildGrid();
-            computeDensityPressure(grid_.view());
-        } else {
-            computeDensityPressure(BruteNeighbours{n_});
-        }
-    }
-
-    void runStage(Stage stage) override {
-        switch (stage) {
-            case Stage::Grid:
-                if (mode_ == NeighbourMode::Grid) {
-                    buildGrid();
-                }
+        switch (mode_) {
+            case NeighbourMode::Grid:
+                buildGrid();
+                computeDensityPressure(sparse_.view());
                 break;
-            case Stage::Density:
-                if (mode_ == NeighbourMode::Grid) {
-                    computeDensityPressure(grid_.view());
-                } else {
-                    computeDensityPressure(BruteNeighbours{n_});
-                }
+            case NeighbourMode::Dense:
+                buildGrid();
+                computeDensityPressure(dense_.view());
                 break;
-            case Stage::Force:
-                if (mode_ == NeighbourMode::Grid) {
-                    computeAcceleration(grid_.view());
-                } else {
-                    computeAcceleration(BruteNeighbours{n_});
-                }
-                break;
-            case Stage::Integrate:
-                integrate();
-                break;
+            default:
+                computeDensityPressure(BruteNeighbours{n_});
         }
     }
 
     // One step, paper §5-6: separate stages launched in sequence.
     void step() {
-        if (mode_ == NeighbourMode::Grid) {
-            buildGrid();
-            computeDensityPressure(grid_.view());
-            computeAcceleration(grid_.view());
-        } else {
-            computeDensityPressure(BruteNeighbours{n_});
-            computeAcceleration(BruteNeighbours{n_});
+        switch (mode_) {
+            case NeighbourMode::Grid:
+                buildGrid();
+                computeDensityPressure(sparse_.view());
+                computeAcceleration(sparse_.view());
+                break;
+            case NeighbourMode::Dense:
+                buildGrid();
+                computeDensityPressure(dense_.view());
+                computeAcceleration(dense_.view());
+                break;
+            default:
+                computeDensityPressure(BruteNeighbours{n_});
+                computeAcceleration(BruteNeighbours{n_});
         }
         integrate();
         ++steps_;
@@ -105,42 +117,68 @@ class SphSolver final : public Simulation {
         }
     }
 
+    void runStage(Stage stage) override {
+        switch (stage) {
+            case Stage::Grid:
+                if (mode_ != NeighbourMode::Brute) {
+                    buildGrid();
+                }
+                break;
+            case Stage::Density:
+                withNeighbours([&](const auto& nb) { computeDensityPressure(nb); });
+                break;
+            case Stage::Force:
+                withNeighbours([&](const auto& nb) { computeAcceleration(nb); });
+                break;
+            case Stage::Integrate:
+                integrate();
+                break;
+        }
+    }
+
+    template <class F>
+    void withNeighbours(F&& f) {
+        switch (mode_) {
+            case NeighbourMode::Grid:
+                f(sparse_.view());
+                break;
+            case NeighbourMode::Dense:
+                f(dense_.view());
+                break;
+            default:
+                f(BruteNeighbours{n_});
+        }
+    }
+
     void buildGrid() {
         exec_.stageBegin("grid");
-        grid_.build(exec_, x_.data(), y_.data(), z_.data(), n_);
-        reorderByCell();
+        const Index* order;
+        if (mode_ == NeighbourMode::Grid) {
+            sparse_.build(exec_, pos_.data(), n_);
+            order = sparse_.permutation();
+        } else {
+            dense_.build(exec_, pos_.data(), n_);
+            order = dense_.permutation();
+        }
+        reorderByCell(order);
         exec_.stageEnd("grid");
     }
 
     // Gathers every particle attribute into cell order, so that neighbours sit close in memory.
-    void reorderByCell() {
-        const Index* order = grid_.permutation();
-        Real* src[6] = {x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data()};
-        Real* dst[6];
-        for (int a = 0; a < 6; ++a) {
-            dst[a] = scratch_[a].data();
-        }
+    void reorderByCell(const Index* order) {
+        const Real4 *pos = pos_.data(), *vel = vel_.data();
         const Index* id = id_.data();
-        Index* newId = scratchId_.data();
-        Real *s0 = src[0], *s1 = src[1], *s2 = src[2], *s3 = src[3], *s4 = src[4], *s5 = src[5];
-        Real *d0 = dst[0], *d1 = dst[1], *d2 = dst[2], *d3 = dst[3], *d4 = dst[4], *d5 = dst[5];
+        Real4 *newPos = sortedPos_.data(), *newVel = sortedVel_.data();
+        Index* newId = sortedId_.data();
         exec_.forEach(n_, [=] WEIR_HD(Index i) {
-            Index from = order[i];
-            d0[i] = s0[from];
-            d1[i] = s1[from];
-            d2[i] = s2[from];
-            d3[i] = s3[from];
-            d4[i] = s4[from];
-            d5[i] = s5[from];
+            const Index from = order[i];
+            newPos[i] = pos[from];
+            newVel[i] = vel[from];
             newId[i] = id[from];
         });
-        x_.swap(scratch_[0]);
-        y_.swap(scratch_[1]);
-        z_.swap(scratch_[2]);
-        vx_.swap(scratch_[3]);
-        vy_.swap(scratch_[4]);
-        vz_.swap(scratch_[5]);
-        id_.swap(scratchId_);
+        pos_.swap(sortedPos_);
+        vel_.swap(sortedVel_);
+        id_.swap(sortedId_);
     }
 
     template <class Neighbours>
@@ -168,37 +206,38 @@ class SphSolver final : public Simulation {
         const ObstacleView obstacles{boxes_.data(), int(boxes_.size()), spheres_.data(),
                                      int(spheres_.size())};
         FaultRecord* fault = fault_.data();
-        const int step = int(steps_);
+        int* counter = stepCounter_.data();
         exec_.forEach(n_, [=] WEIR_HD(Index i) {
-            integrateAt(i, pv, params, obstacles, fault, step);
+            integrateAt(i, pv, params, obstacles, fault, *counter);
         });
+        // The step number lives on the device, so a replayed graph records the right one.
+        exec_.forEach(1, [=] WEIR_HD(Index) { ++*counter; });
         exec_.stageEnd("integrate");
     }
 
-    ParticleView view() {
-        return {x_.data(),  y_.data(),  z_.data(),   vx_.data(), vy_.data(), vz_.data(),
-                ax_.data(), ay_.data(), az_.data(), rho_.data(), p_.data(),  n_};
-    }
+    ParticleView view() { return {pos_.data(), vel_.data(), acc_.data(), rho_.data(), p_.data(), n_}; }
 
     void download(HostParticles& out) override {
         out.resize(n_);
         std::vector<Index> ids(n_);
+        std::vector<Real4> pos(n_), vel(n_);
+        std::vector<Real> rho(n_), p(n_);
         exec_.download(id_, ids.data(), n_);
-        std::vector<Real> tmp(n_);
-        auto fetch = [&](const Buffer<Real>& src, std::vector<Real>& dst) {
-            exec_.download(src, tmp.data(), n_);
-            for (Index i = 0; i < n_; ++i) {
-                dst[ids[i]] = tmp[i];
-            }
-        };
-        fetch(x_, out.x);
-        fetch(y_, out.y);
-        fetch(z_, out.z);
-        fetch(vx_, out.vx);
-        fetch(vy_, out.vy);
-        fetch(vz_, out.vz);
-        fetch(rho_, out.rho);
-        fetch(p_, out.p);
+        exec_.download(pos_, pos.data(), n_);
+        exec_.download(vel_, vel.data(), n_);
+        exec_.download(rho_, rho.data(), n_);
+        exec_.download(p_, p.data(), n_);
+        for (Index i = 0; i < n_; ++i) {
+            const Index k = ids[i];
+            out.x[k] = pos[i].x;
+            out.y[k] = pos[i].y;
+            out.z[k] = pos[i].z;
+            out.vx[k] = vel[i].x;
+            out.vy[k] = vel[i].y;
+            out.vz[k] = vel[i].z;
+            out.rho[k] = rho[i];
+            out.p[k] = p[i];
+        }
     }
 
     FaultRecord fault() override { return exec_.readOne(fault_, 0); }
@@ -208,45 +247,41 @@ class SphSolver final : public Simulation {
     const StageTimes& stageTimes() const override { return times_; }
     void clearStageTimes() override { times_.clear(); }
 
-    Backend backend() const override {
-        return Exec::isDevice ? Backend::Cuda : Backend::Cpu;
-    }
+    Backend backend() const override { return Exec::isDevice ? Backend::Cuda : Backend::Cpu; }
     NeighbourMode neighbourMode() const override { return mode_; }
     std::string deviceName() const override { return exec_.deviceName(); }
     std::size_t bytesHeld() const override {
-        std::size_t reals = 0;
-        for (const auto* b : {&x_, &y_, &z_, &vx_, &vy_, &vz_, &ax_, &ay_, &az_, &rho_, &p_}) {
-            reals += b->size();
-        }
-        for (const auto& b : scratch_) {
-            reals += b.size();
-        }
-        return reals * sizeof(Real) + (id_.size() + scratchId_.size()) * sizeof(Index) +
-               grid_.bytesHeld();
+        std::size_t bytes = (pos_.size() + vel_.size() + acc_.size() + sortedPos_.size() +
+                             sortedVel_.size()) *
+                                sizeof(Real4) +
+                            (rho_.size() + p_.size()) * sizeof(Real) +
+                            (id_.size() + sortedId_.size()) * sizeof(Index);
+        return bytes + (mode_ == NeighbourMode::Grid ? sparse_.bytesHeld() : 0) +
+               (mode_ == NeighbourMode::Dense ? dense_.bytesHeld() : 0);
     }
     Index occupiedCells() const override {
-        return mode_ == NeighbourMode::Grid ? grid_.numCells() : 0;
+        return mode_ == NeighbourMode::Grid ? sparse_.numCells() : 0;
     }
     const SphParams& params() const override { return params_; }
     Index particleCount() const override { return n_; }
     long long stepCount() const override { return steps_; }
 
-    // For tests: the grid as last built.
-    const NeighbourGrid<Exec>& grid() const { return grid_; }
-
    private:
     Exec exec_;
     NeighbourMode mode_;
     SphParams params_;
-    NeighbourGrid<Exec> grid_;
+    NeighbourGrid<Exec> sparse_;
+    DenseGrid<Exec> dense_;
     Index n_ = 0;
     long long steps_ = 0;
-    Buffer<Real> x_, y_, z_, vx_, vy_, vz_, ax_, ay_, az_, rho_, p_;
-    Buffer<Real> scratch_[6];
-    Buffer<Index> id_, scratchId_;
+    Buffer<Real4> pos_, vel_, acc_, sortedPos_, sortedVel_;
+    Buffer<Real> rho_, p_;
+    Buffer<Index> id_, sortedId_;
     Buffer<ObstacleBox> boxes_;
     Buffer<ObstacleSphere> spheres_;
     Buffer<FaultRecord> fault_;
+    Buffer<int> stepCounter_;
+    typename Exec::Graph graph_;
     StageTimes times_;
 };
 

@@ -1,0 +1,105 @@
+// weir's fast cell table: the same sort by cell as paper §6.2, but a dense array over every grid
+// cell instead of a table of occupied cells and their 26 neighbours. cellBound[c] is the first
+// particle (in cell order) whose cell is >= c, built by scattering run ends and a max-scan, so a
+// row of three neighbour cells is the run [cellBound[first], cellBound[last + 1]): two loads per
+// row, nine rows, no binary search and no per-cell neighbour table. Used when the grid has at
+// most a few cells per particle; it also lifts the 1024-cells-per-axis limit of the 32-bit id.
+#pragma once
+
+#include "core/config.h"
+#include "grid/cell_id.h"
+#include "grid/cell_sort.h"
+
+namespace weir {
+
+// Linear index of a cell, X fastest, then Z, then Y: the order of the paper's cell ids.
+WEIR_HD inline CellKey denseCellIndex(int x, int y, int z, int nx, int nz) {
+    return (CellKey(y) * CellKey(nz) + CellKey(z)) * CellKey(nx) + CellKey(x);
+}
+
+struct DenseGridNeighbours {
+    const Index* cellBound;       // totalCells + 1 entries
+    const CellKey* particleCell;  // linear cell of each (sorted) particle
+    int nx, ny, nz;
+
+    template <class F>
+    WEIR_HD void forEachCandidate(Index i, F&& f) const {
+        const CellKey cell = particleCell[i];
+        const int cx = int(cell % CellKey(nx));
+        const CellKey rest = cell / CellKey(nx);
+        const int cz = int(rest % CellKey(nz)), cy = int(rest / CellKey(nz));
+        const int xLo = cx > 0 ? cx - 1 : 0, xHi = cx + 1 < nx ? cx + 1 : nx - 1;
+        for (int y = cy - 1; y <= cy + 1; ++y) {
+            if (y < 0 || y >= ny) {
+                continue;
+            }
+            for (int z = cz - 1; z <= cz + 1; ++z) {
+                if (z < 0 || z >= nz) {
+                    continue;
+                }
+                const CellKey row = denseCellIndex(0, y, z, nx, nz);
+                const Index end = cellBound[row + CellKey(xHi) + 1];
+                for (Index j = cellBound[row + CellKey(xLo)]; j < end; ++j) {
+                    f(j);
+                }
+            }
+        }
+    }
+};
+
+// Whether the dense table suits a grid for n particles: at most 8 cells per particle (plus a
+// floor for small runs) and linear indices that fit in 31 bits.
+inline bool denseGridSuits(const GridSpec& spec, std::int64_t n) {
+    const std::uint64_t cells = totalCells(spec);
+    return cells < (std::uint64_t(1) << 31) && cells <= std::uint64_t(8 * n + (1 << 20));
+}
+
+template <class Exec>
+class DenseGrid {
+   public:
+    template <class T>
+    using Buffer = typename Exec::template Buffer<T>;
+
+    explicit DenseGrid(const GridSpec& spec) : spec_(spec) {}
+
+    void build(Exec& exec, const Real4* pos, Index n) {
+        sort_.prepare(n);
+        const std::uint64_t cells = totalCells(spec_);
+        ensureCapacity(cellBound_, std::size_t(cells + 1));
+        const GridSpec spec = spec_;
+        const int nx = spec.dims[0], nz = spec.dims[2];
+        CellKey* keys = sort_.keys();
+        exec.forEach(n, [=] WEIR_HD(Index i) {
+            CellCoord c = spec.cellOf(pos[i].x, pos[i].y, pos[i].z);
+            keys[i] = denseCellIndex(c.x, c.y, c.z, nx, nz);
+        });
+        sort_.sort(exec, bitsFor(cells));
+        // cellBound[c + 1] = one past the last particle of cell c, where c is occupied; then a
+        // running max fills the empty cells with the bound of the last occupied one before them.
+        Index* bound = cellBound_.data();
+        const CellKey* sorted = sort_.sortedKeys();
+        exec.forEach(Index(cells + 1), [=] WEIR_HD(Index c) { bound[c] = 0; });
+        exec.forEach(n, [=] WEIR_HD(Index i) {
+            if (i == n - 1 || sorted[i] != sorted[i + 1]) {
+                bound[sorted[i] + 1] = i + 1;
+            }
+        });
+        exec.inclusiveMaxScan(bound, Index(cells + 1));
+    }
+
+    DenseGridNeighbours view() const {
+        return {cellBound_.data(), sort_.sortedKeys(), spec_.dims[0], spec_.dims[1],
+                spec_.dims[2]};
+    }
+    const Index* permutation() const { return sort_.permutation(); }
+    const GridSpec& spec() const { return spec_; }
+    const Buffer<Index>& cellBound() const { return cellBound_; }
+    std::size_t bytesHeld() const { return sort_.bytesHeld() + cellBound_.size() * sizeof(Index); }
+
+   private:
+    GridSpec spec_;
+    CellSort<Exec> sort_;
+    Buffer<Index> cellBound_;
+};
+
+}  // namespace weir
