@@ -3,7 +3,7 @@
 # reference step side by side, and collect logs and results under $OUT (or ./gpu-out).
 # Usage: bash bench/gpu_run.sh [sizes] [reference-dir]
 set -uo pipefail
-out=${OUT:-gpu-out}
+out=$(realpath -m "${OUT:-gpu-out}")
 sizes=${1:-10k,50k,100k,1M,10M}
 reference=${2:-.device/gpu-reference}
 mkdir -p "$out"
@@ -12,7 +12,7 @@ nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.max.sm 
 cmake -S . -B build-gpu -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CUDA_ARCHITECTURES=90 \
     >"$out/configure.log" 2>&1 || { tail -30 "$out/configure.log"; exit 1; }
 ninja -C build-gpu -j"$(nproc)" >"$out/build.log" 2>&1 || { grep -E "error" -A3 "$out/build.log" | head -40; exit 1; }
-(cd build-gpu && ctest -j8 --output-on-failure >"../$out/ctest.log" 2>&1); tail -4 "$out/ctest.log"
+(cd build-gpu && ctest -j8 --output-on-failure >"$out/ctest.log" 2>&1); tail -4 "$out/ctest.log"
 ./build-gpu/weir_tests --gtest_filter='Cuda*' 2>&1 | grep -E "^\[ +(OK|FAILED|SKIPPED) " | tee "$out/cuda_tests.txt"
 ./build-gpu/weir info | tee "$out/info.txt"
 for n in 20000 100000 1000000; do

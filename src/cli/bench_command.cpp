@@ -88,7 +88,7 @@ double neighboursPerParticle(const HostParticles& p, const GridSpec& spec, Real 
         unsorted[i] = {p.x[i], p.y[i], p.z[i], 0};
     }
     CpuExec exec;
-    DenseGrid<CpuExec> grid(spec);
+    DenseGrid<CpuExec> grid(spec, 1);
     grid.build(exec, unsorted.data(), n);
     for (Index i = 0; i < n; ++i) {
         pos[i] = unsorted[grid.permutation()[i]];

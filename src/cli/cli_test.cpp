@@ -75,9 +75,8 @@ class Cli : public ::testing::Test {
     // Runs `weir ARGS` in the test directory and captures its output.
     RunResult weir(const std::string& args) {
         const std::string log = path("weir_output_" + std::to_string(runs_++) + ".txt");
-        const std::string command = "cd " + quoted(dir_.string()) + " && " +
-                                    quoted(WEIR_BINARY) + " " + args + " > " + quoted(log) +
-                                    " 2>&1";
+        const std::string command = "cd " + quoted(dir_.string()) + " && " + quoted(WEIR_BINARY) +
+                                    " " + args + " > " + quoted(log) + " 2>&1";
         const int status = std::system(command.c_str());
         RunResult result;
         result.exitCode = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
@@ -309,9 +308,8 @@ TEST_F(Cli, PlyAndCsvFramesParse) {
 
     for (const std::string format : {"ply", "csv"}) {
         SCOPED_TRACE(format);
-        RunResult run =
-            weir("run tiny.json" + std::string(kCpu) + " --frames 1 --format " + format +
-                 " --out " + format);
+        RunResult run = weir("run tiny.json" + std::string(kCpu) + " --frames 1 --format " +
+                             format + " --out " + format);
         ASSERT_EQ(run.exitCode, 0) << run.output;
         const fs::path out = dir_ / format;
         EXPECT_EQ(entries(out), (std::vector<std::string>{frameName(0, format),
@@ -340,8 +338,8 @@ TEST_F(Cli, PlyAndCsvFramesParse) {
 }
 
 TEST_F(Cli, BuiltinSceneRunsByName) {
-    RunResult run = weir("run dam_break --particles 500 --frames 1" + std::string(kCpu) +
-                         " --out dam");
+    RunResult run =
+        weir("run dam_break --particles 500 --frames 1" + std::string(kCpu) + " --out dam");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_TRUE(contains(run.output, "scene dam_break (<built-in dam_break>)"));
     const HostParticles first = readVtu(path("dam/" + frameName(0, "vtu")));

@@ -121,34 +121,36 @@ TEST_P(DenseGridVersusBrute, SameNeighboursAsBruteForce) {
     const Real size = 1, h = Real(0.07);
     Cloud cloud = testing::randomCloud(n, size, unsigned(n) + 11);
     std::vector<Real4> pos = cloud.packed();
-    CpuExec exec;
-    // A box taller than wide, so that mixing up axes would show.
-    DenseGrid<CpuExec> grid(makeGridSpec({0, 0, 0}, {size, 2 * size, size}, h));
-    grid.build(exec, pos.data(), n);
-    const Index* order = grid.permutation();
-    // cellBound is non-decreasing, starts at 0 and ends at n.
-    const std::uint64_t cells = totalCells(grid.spec());
-    const Index* bound = grid.cellBound().data();
-    ASSERT_EQ(bound[0], 0);
-    ASSERT_EQ(bound[cells], n);
-    for (std::uint64_t c = 0; c < cells; ++c) {
-        ASSERT_LE(bound[c], bound[c + 1]);
-    }
     auto brute = testing::bruteNeighbourSets(cloud, h);
-    DenseGridNeighbours view = grid.view();
-    for (Index i = 0; i < n; ++i) {
-        Index pi = order[i];
-        std::vector<int> found;
-        view.forEachCandidate(i, [&](Index j) {
-            Index pj = order[j];
-            Real dx = cloud.x[pi] - cloud.x[pj], dy = cloud.y[pi] - cloud.y[pj],
-                 dz = cloud.z[pi] - cloud.z[pj];
-            if (pj != pi && dx * dx + dy * dy + dz * dz < h * h) {
-                found.push_back(pj);
-            }
-        });
-        std::sort(found.begin(), found.end());
-        ASSERT_EQ(found, brute[pi]) << "particle " << pi;
+    for (int reach : {1, 2, 3}) {
+        CpuExec exec;
+        // A box taller than wide, so that mixing up axes would show; cells of h / reach.
+        DenseGrid<CpuExec> grid(makeGridSpec({0, 0, 0}, {size, 2 * size, size}, h / reach), reach);
+        grid.build(exec, pos.data(), n);
+        const Index* order = grid.permutation();
+        // cellBound is non-decreasing, starts at 0 and ends at n.
+        const std::uint64_t cells = totalCells(grid.spec());
+        const Index* bound = grid.cellBound().data();
+        ASSERT_EQ(bound[0], 0);
+        ASSERT_EQ(bound[cells], n);
+        for (std::uint64_t c = 0; c < cells; ++c) {
+            ASSERT_LE(bound[c], bound[c + 1]);
+        }
+        DenseGridNeighbours view = grid.view();
+        for (Index i = 0; i < n; ++i) {
+            Index pi = order[i];
+            std::vector<int> found;
+            view.forEachCandidate(i, [&](Index j) {
+                Index pj = order[j];
+                Real dx = cloud.x[pi] - cloud.x[pj], dy = cloud.y[pi] - cloud.y[pj],
+                     dz = cloud.z[pi] - cloud.z[pj];
+                if (pj != pi && dx * dx + dy * dy + dz * dz < h * h) {
+                    found.push_back(pj);
+                }
+            });
+            std::sort(found.begin(), found.end());
+            ASSERT_EQ(found, brute[pi]) << "particle " << pi << ", reach " << reach;
+        }
     }
 }
 

@@ -2,6 +2,8 @@
 // they stay in float range for any h.
 #pragma once
 
+#include <cmath>
+
 #include "core/config.h"
 
 namespace weir {
@@ -10,7 +12,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Constant factors of the kernels for one smoothing radius h.
 struct KernelCoefficients {
-    Real h = 1, h2 = 1, invH = 1;
+    Real h = 1, h2 = 1, invH = 1, invH2 = 1;
     Real poly6 = 0;       // 315 / (64 pi h^3):      W(r)      = poly6 * (1 - q^2)^3
     Real spikyGrad = 0;   // -45 / (pi h^4):         grad W(r) = spikyGrad * (1 - q)^2 * r / |r|
     Real viscLaplace = 0; // 45 / (pi h^5):          lap W(r)  = viscLaplace * (1 - q)
@@ -20,6 +22,7 @@ struct KernelCoefficients {
         k.h = Real(h);
         k.h2 = Real(h * h);
         k.invH = Real(1.0 / h);
+        k.invH2 = Real(1.0 / (h * h));
         k.poly6 = Real(315.0 / (64.0 * kPi * h * h * h));
         k.spikyGrad = Real(-45.0 / (kPi * h * h * h * h));
         k.viscLaplace = Real(45.0 / (kPi * h * h * h * h * h));
@@ -32,14 +35,27 @@ WEIR_HD inline Real poly6(const KernelCoefficients& k, Real r2) {
     if (r2 >= k.h2) {
         return Real(0);
     }
-    Real t = Real(1) - r2 / k.h2;
+    Real t = Real(1) - r2 * k.invH2;
     return k.poly6 * t * t * t;
 }
 
-// Magnitude factor g of the spiky gradient, grad W = g * r_vec (r_vec = x_i - x_j, 0 < r < h).
-WEIR_HD inline Real spikyGradientFactor(const KernelCoefficients& k, Real r) {
+// 1 / sqrt(x), one instruction on the GPU.
+WEIR_HD inline Real reciprocalSqrt(Real x) {
+#if defined(__CUDA_ARCH__)
+    return rsqrt(x);
+#else
+    return Real(1) / std::sqrt(x);
+#endif
+}
+
+// Magnitude factor g of the spiky gradient, grad W = g * r_vec (r_vec = x_i - x_j, 0 < r < h),
+// given r and 1 / r.
+WEIR_HD inline Real spikyGradientFactor(const KernelCoefficients& k, Real r, Real invR) {
     Real t = Real(1) - r * k.invH;
-    return k.spikyGrad * t * t / r;
+    return k.spikyGrad * t * t * invR;
+}
+WEIR_HD inline Real spikyGradientFactor(const KernelCoefficients& k, Real r) {
+    return spikyGradientFactor(k, r, Real(1) / r);
 }
 
 // Laplacian of the viscosity kernel at distance r (0 <= r < h).

@@ -13,15 +13,17 @@
 namespace weir {
 
 // Structure-of-arrays particle data by attribute, in the grid's cell order. Vector attributes
-// are padded to four components: one aligned 16-byte load per neighbour on the GPU.
+// are padded to four components: one aligned 16-byte load per neighbour on the GPU. The density
+// rides in the velocity's fourth component, so the force loop reads two vectors per neighbour
+// (pressure follows from density by eq. 3); the density stage reads only positions, so writing
+// it there races with nothing.
 struct ParticleView {
-    Real4* pos;
-    Real4* vel;
-    Real4* acc;
-    Real* rho;
-    Real* p;
+    Real4* pos;  // x, y, z, unused
+    Real4* vel;  // vx, vy, vz, density
+    Real4* acc;  // ax, ay, az, unused
     Index count;
 
+    WEIR_HD Real density(Index i) const { return vel[i].w; }
     WEIR_HD Vec3 position(Index i) const { return pos[i].xyz(); }
     WEIR_HD Vec3 velocity(Index i) const { return vel[i].xyz(); }
 };
@@ -59,7 +61,7 @@ WEIR_HD inline bool claimFault(FaultRecord* record, FaultCode code) {
 #endif
 }
 
-// Eq. 2 with poly6, and eq. 3: density and pressure of particle i.
+// Eq. 2 with poly6: density of particle i (its pressure follows by eq. 3 where it is needed).
 template <class Neighbours>
 WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                       const SphParams& params) {
@@ -68,18 +70,17 @@ WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Nei
     nb.forEachCandidate(i, [&](Index j) {
         sum += poly6(params.kernel, lengthSquared(xi - pv.position(j)));
     });
-    Real rho = params.mass * sum;
-    pv.rho[i] = rho;
-    pv.p[i] = pressureFromDensity(params, rho);
+    pv.vel[i].w = params.mass * sum;
 }
 
 // Eq. 4 (pressure, spiky gradient) and eq. 5 (viscosity, its Laplacian) between i and j:
 // the force density on i, for r_vec = x_i - x_j and 0 < r < h.
-WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r, Real pi, Real pj,
-                              Real rhoj, const Vec3& vi, const Vec3& vj) {
-    Real pressure = -params.mass * (pi + pj) / (Real(2) * rhoj) *
-                    spikyGradientFactor(params.kernel, r);
-    Real viscous = params.viscosity * params.mass / rhoj * viscosityLaplacian(params.kernel, r);
+WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r, Real invR, Real pi,
+                              Real pj, Real rhoj, const Vec3& vi, const Vec3& vj) {
+    const Real massOverRho = params.mass / rhoj;
+    Real pressure = -massOverRho * Real(0.5) * (pi + pj) *
+                    spikyGradientFactor(params.kernel, r, invR);
+    Real viscous = params.viscosity * massOverRho * viscosityLaplacian(params.kernel, r);
     return rVec * pressure + (vj - vi) * viscous;
 }
 
@@ -87,18 +88,21 @@ WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r,
 template <class Neighbours>
 WEIR_HD inline void accelerationAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                    const SphParams& params) {
-    const Vec3 xi = pv.position(i), vi = pv.velocity(i);
-    const Real pi = pv.p[i], h2 = params.kernel.h2;
+    const Vec3 xi = pv.position(i);
+    const Real4 vi = pv.vel[i];
+    const Real rhoi = vi.w, pi = pressureFromDensity(params, rhoi), h2 = params.kernel.h2;
     Vec3 force;
     nb.forEachCandidate(i, [&](Index j) {
         Vec3 rVec = xi - pv.position(j);
         Real r2 = lengthSquared(rVec);
         if (r2 < h2 && r2 > Real(0)) {
-            force += pairForce(params, rVec, std::sqrt(r2), pi, pv.p[j], pv.rho[j], vi,
-                               pv.velocity(j));
+            const Real4 vj = pv.vel[j];
+            const Real invR = reciprocalSqrt(r2);
+            force += pairForce(params, rVec, r2 * invR, invR, pi, pressureFromDensity(params, vj.w),
+                               vj.w, vi.xyz(), vj.xyz());
         }
     });
-    pv.acc[i] = Real4::from(force / pv.rho[i] + params.gravity);
+    pv.acc[i] = Real4::from(force / rhoi + params.gravity);
 }
 
 // Removes the part of v along unit normal n that points into the wall, keeping `restitution` of
@@ -202,7 +206,7 @@ WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams
         fault->value = float(std::sqrt(speed2));
     }
     pv.pos[i] = Real4::from(x);
-    pv.vel[i] = Real4::from(v);
+    pv.vel[i] = Real4::from(v, pv.vel[i].w);  // keeps the step's density for output
 }
 
 }  // namespace weir

@@ -175,14 +175,14 @@ TEST(Setup, RequestedCountIsTheClosestTheLatticeAllows) {
     for (const Case& c : {Case{{0.1, 0.1, 0.1}, 3000}, Case{{0.4, 0.3, 0.2}, 2000},
                           Case{{0.4, 0.3, 0.2}, 5000}, Case{{0.37, 0.29, 0.23}, 777},
                           Case{{0.4, 0.6, 0.6}, 1000}, Case{{0.4, 0.6, 0.6}, 20000}}) {
-        Scene scene = parseScene(R"({
+        Scene scene =
+            parseScene(R"({
             "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
             "blocks": [{"min": [0, 0, 0], "max": [)" +
-                                     std::to_string(c.extent.x) + ", " +
-                                     std::to_string(c.extent.y) + ", " +
-                                     std::to_string(c.extent.z) + R"(]}]
+                           std::to_string(c.extent.x) + ", " + std::to_string(c.extent.y) + ", " +
+                           std::to_string(c.extent.z) + R"(]}]
         })",
-                                 "<test closest>");
+                       "<test closest>");
         std::int64_t got = std::int64_t(setupOf(scene, nullptr, c.wanted).particles.size());
         std::int64_t best = closestBlockCount(c.extent, c.wanted);
         EXPECT_EQ(std::llabs(got - c.wanted), std::llabs(best - c.wanted))
@@ -308,14 +308,13 @@ TEST(Setup, NoSeedsInsideObstacles) {
     })",
                                   "<test obstacle spheres>");
     HostParticles p = seedParticles(withSphere, 0.01);
-    HostParticles unobstructed = seedParticles(
-        parseScene(R"({
+    HostParticles unobstructed = seedParticles(parseScene(R"({
             "container": {"min": [0, 0, 0], "max": [0.2, 0.2, 0.2]},
             "blocks": [{"min": [0, 0, 0], "max": [0.1, 0.1, 0.1]}],
             "spheres": [{"center": [0.15, 0.15, 0.15], "radius": 0.045}]
         })",
-                   "<test no obstacles>"),
-        0.01);
+                                                          "<test no obstacles>"),
+                                               0.01);
     EXPECT_LT(p.size(), unobstructed.size());
     std::size_t removed = 0;  // lattice points of the unobstructed fluid inside an obstacle
     for (std::size_t i = 0; i < unobstructed.size(); ++i) {
@@ -534,8 +533,10 @@ TEST(Setup, TimeStepLandsOnFramesAndRespectsTheLimits) {
             Scene scene = parseScene(std::string(R"({
                 "container": {"min": [0, 0, 0], "max": [0.8, 0.6, 0.2]},
                 "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.5, 0.2]}],
-                "particles": {"spacing": )") + spacing + R"(},
-                "time": {"duration": 1, "frameRate": )" + std::to_string(frameRate) + R"(}
+                "particles": {"spacing": )") +
+                                         spacing + R"(},
+                "time": {"duration": 1, "frameRate": )" +
+                                         std::to_string(frameRate) + R"(}
             })",
                                      "<test time step>");
             SetupReport report;

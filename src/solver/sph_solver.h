@@ -23,7 +23,13 @@ class SphSolver final : public Simulation {
         : mode_(mode),
           params_(setup.params),
           sparse_(mode == NeighbourMode::Grid ? setup.grid : GridSpec{}),
-          dense_(setup.grid) {
+          dense_(makeGridSpec(Vec3d(setup.grid.origin),
+                              Vec3d(setup.grid.origin) +
+                                  Vec3d(setup.grid.dims[0], setup.grid.dims[1], setup.grid.dims[2]) *
+                                      double(setup.grid.cellSize),
+                              double(setup.grid.cellSize) / DenseGrid<Exec>::kCellsPerRadius,
+                              1 << 21),
+                 DenseGrid<Exec>::kCellsPerRadius) {
         const HostParticles& host = setup.particles;
         n_ = Index(host.size());
         std::vector<Real4> pos(n_), vel(n_);
@@ -37,8 +43,6 @@ class SphSolver final : public Simulation {
         exec_.upload(vel_, vel.data(), n_);
         exec_.upload(id_, ids.data(), n_);
         acc_.resize(n_);
-        rho_.resize(n_);
-        p_.resize(n_);
         if (mode_ != NeighbourMode::Brute) {
             sortedPos_.resize(n_);
             sortedVel_.resize(n_);
@@ -56,16 +60,19 @@ class SphSolver final : public Simulation {
         if constexpr (Exec::isDevice) {
             // With no host round trip inside a step, a pair of steps replays as one CUDA graph.
             if (mode_ != NeighbourMode::Grid && !exec_.timing && steps >= 4) {
-                if ((steps_ & 1) != 0) {
-                    step();
-                    --steps;
-                }
                 if (!graph_.ready()) {
+                    step();  // allocates every buffer: a capture cannot allocate
+                    --steps;
+                    graphParity_ = int(steps_ & 1);
                     exec_.capture(graph_, [&] {
                         step();
                         step();
                     });
                     steps_ -= 2;  // capturing does not run the steps
+                }
+                if (int(steps_ & 1) != graphParity_) {  // the graph holds buffer swaps of a pair
+                    step();
+                    --steps;
                 }
                 for (; steps >= 2; steps -= 2) {
                     exec_.launch(graph_);
@@ -215,18 +222,15 @@ class SphSolver final : public Simulation {
         exec_.stageEnd("integrate");
     }
 
-    ParticleView view() { return {pos_.data(), vel_.data(), acc_.data(), rho_.data(), p_.data(), n_}; }
+    ParticleView view() { return {pos_.data(), vel_.data(), acc_.data(), n_}; }
 
     void download(HostParticles& out) override {
         out.resize(n_);
         std::vector<Index> ids(n_);
         std::vector<Real4> pos(n_), vel(n_);
-        std::vector<Real> rho(n_), p(n_);
         exec_.download(id_, ids.data(), n_);
         exec_.download(pos_, pos.data(), n_);
         exec_.download(vel_, vel.data(), n_);
-        exec_.download(rho_, rho.data(), n_);
-        exec_.download(p_, p.data(), n_);
         for (Index i = 0; i < n_; ++i) {
             const Index k = ids[i];
             out.x[k] = pos[i].x;
@@ -235,8 +239,8 @@ class SphSolver final : public Simulation {
             out.vx[k] = vel[i].x;
             out.vy[k] = vel[i].y;
             out.vz[k] = vel[i].z;
-            out.rho[k] = rho[i];
-            out.p[k] = p[i];
+            out.rho[k] = vel[i].w;
+            out.p[k] = pressureFromDensity(params_, vel[i].w);
         }
     }
 
@@ -254,7 +258,6 @@ class SphSolver final : public Simulation {
         std::size_t bytes = (pos_.size() + vel_.size() + acc_.size() + sortedPos_.size() +
                              sortedVel_.size()) *
                                 sizeof(Real4) +
-                            (rho_.size() + p_.size()) * sizeof(Real) +
                             (id_.size() + sortedId_.size()) * sizeof(Index);
         return bytes + (mode_ == NeighbourMode::Grid ? sparse_.bytesHeld() : 0) +
                (mode_ == NeighbourMode::Dense ? dense_.bytesHeld() : 0);
@@ -275,13 +278,13 @@ class SphSolver final : public Simulation {
     Index n_ = 0;
     long long steps_ = 0;
     Buffer<Real4> pos_, vel_, acc_, sortedPos_, sortedVel_;
-    Buffer<Real> rho_, p_;
     Buffer<Index> id_, sortedId_;
     Buffer<ObstacleBox> boxes_;
     Buffer<ObstacleSphere> spheres_;
     Buffer<FaultRecord> fault_;
     Buffer<int> stepCounter_;
     typename Exec::Graph graph_;
+    int graphParity_ = 0;
     StageTimes times_;
 };
 
