@@ -503,5 +503,40 @@ TEST_F(Cli, LongContainerRunsOnTheDenseTableOnly) {
     EXPECT_EQ(readVtu(path("auto/" + frameName(1, "vtu"))).size(), 8u * 8u * 8u);
 }
 
+TEST_F(Cli, BenchTimesEveryStageOfEveryColumn) {
+    // A smoke test of `weir bench` at a tiny size: asserts that every stage was timed and the
+    // files were written, not how fast anything is.
+    RunResult run = weir("bench --sizes 400,800 --steps 3 --warmup 1 --settle 0.01 --budget 60 "
+                         "--backends cpu-brute,cpu-grid,cpu-dense --no-plot --out b");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_TRUE(contains(run.output, "Pressure computation")) << run.output;
+    std::ifstream in(path("b/bench.json"));
+    ASSERT_TRUE(in.good());
+    nlohmann::json record = nlohmann::json::parse(in);
+    ASSERT_EQ(record["runs"].size(), 2u);
+    for (const auto& r : record["runs"]) {
+        EXPECT_GT(r["neighboursPerParticle"].get<double>(), 5.0);
+        for (const char* column : {"cpu-brute", "cpu-grid", "cpu-dense"}) {
+            const auto& c = r["columns"][column];
+            ASSERT_FALSE(c.contains("skipped")) << column;
+            for (const char* stage : {"density", "force", "integrate"}) {
+                EXPECT_GT(c["stages"][stage].get<double>(), 0.0) << column << " " << stage;
+            }
+            if (std::string(column) != "cpu-brute") {
+                EXPECT_GT(c["stages"]["grid"].get<double>(), 0.0) << column;
+                EXPECT_GT(c["stepMs"].get<double>(), 0.0) << column;
+            }
+            EXPECT_GT(c["totalMs"].get<double>(), 0.0) << column;
+        }
+    }
+    EXPECT_TRUE(fs::exists(path("b/bench.csv")));
+}
+
+TEST_F(Cli, BenchRejectsUnknownColumns) {
+    RunResult run = weir("bench --sizes 400 --backends cpu-fast --no-plot --out b");
+    EXPECT_EQ(run.exitCode, 2) << run.output;
+    EXPECT_TRUE(contains(run.output, "cpu-fast")) << run.output;
+}
+
 }  // namespace
 }  // namespace weir

@@ -27,7 +27,7 @@ struct RunOptions {
 
 struct BenchOptions {
     std::string scene;                   // file or built-in name; empty: dam break
-    std::string sizes = "10k,50k,100k";  // particle counts, k/M suffixes allowed
+    std::string sizes = "10k,50k";       // particle counts, k/M suffixes allowed
     std::string columns = "auto";        // cpu-brute,cpu-grid,...,cuda-dense or auto
     int steps = 20;                      // timed steps (median per stage)
     int warmup = 3;                      // untimed steps before timing
