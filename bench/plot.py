@@ -18,7 +18,8 @@ PAPER = {
     "GPU (paper, GTX 280)": ([10000, 50000, 100000], [21.24, 264.31, 1212.76]),
     "Optimized GPU (paper, GTX 280)": ([10000, 50000, 100000], [4.898, 10.137, 21.241]),
 }
-STYLE = {"cpu-brute": "C0", "cpu-grid": "C2", "cuda-brute": "C1", "cuda-grid": "C3"}
+STYLE = {"cpu-brute": ("C0", "o"), "cpu-grid": ("C2", "o"), "cpu-dense": ("C4", "^"),
+         "cuda-brute": ("C1", "o"), "cuda-grid": ("C3", "o"), "cuda-dense": ("C5", "^")}
 
 
 def main(argv):
@@ -40,7 +41,8 @@ def main(argv):
                     series[name][0].append(run["particles"])
                     series[name][1].append(result["totalMs"])
         for name, (xs, ys, title) in sorted(series.items()):
-            ax.loglog(xs, ys, "o-", color=STYLE.get(name), label=f"{title} ({name}, weir)")
+            color, marker = STYLE.get(name, (None, "o"))
+            ax.loglog(xs, ys, marker + "-", color=color, label=f"{title} ({name}, weir)")
     for (label, (xs, ys)), color in zip(PAPER.items(), ["C0", "C1", "C3"]):
         ax.loglog(xs, ys, "s--", color=color, alpha=0.5, label=label)
     ax.set_xlabel("particles")
