@@ -4,13 +4,19 @@
 
 #include <cuda/functional>
 
+#include <cstdlib>
 #include <sstream>
 
 #include "core/exec_cuda.cuh"
 
 namespace weir {
 
-CudaExec::CudaExec() { WEIR_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking)); }
+CudaExec::CudaExec() {
+    WEIR_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
+    if (const char* block = std::getenv("WEIR_EXPERIMENT_BLOCK")) {  // tuning runs only
+        blockSize_ = std::atoi(block);
+    }
+}
 
 CudaExec::~CudaExec() {
     for (cudaEvent_t e : eventPool_) {

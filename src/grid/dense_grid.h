@@ -75,7 +75,7 @@ class DenseGrid {
     void build(Exec& exec, const Real4* pos, Index n) {
         sort_.prepare(n);
         const std::uint64_t cells = totalCells(spec_);
-        ensureCapacity(cellBound_, std::size_t(cells + 1));
+        cellBound_.resize(std::size_t(cells + 1));  // the grid does not change size
         const GridSpec spec = spec_;
         const int nx = spec.dims[0], nz = spec.dims[2];
         CellKey* keys = sort_.keys();

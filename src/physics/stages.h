@@ -86,7 +86,7 @@ WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r,
 
 // Acceleration of particle i: (pressure + viscous force density) / rho_i + gravity.
 template <class Neighbours>
-WEIR_HD inline void accelerationAt(Index i, const ParticleView& pv, const Neighbours& nb,
+WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighbours& nb,
                                    const SphParams& params) {
     const Vec3 xi = pv.position(i);
     const Real4 vi = pv.vel[i];
@@ -102,7 +102,13 @@ WEIR_HD inline void accelerationAt(Index i, const ParticleView& pv, const Neighb
                                vj.w, vi.xyz(), vj.xyz());
         }
     });
-    pv.acc[i] = Real4::from(force / rhoi + params.gravity);
+    return force / rhoi + params.gravity;
+}
+
+template <class Neighbours>
+WEIR_HD inline void accelerationAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                   const SphParams& params) {
+    pv.acc[i] = Real4::from(accelerationOf(i, pv, nb, params));
 }
 
 // Removes the part of v along unit normal n that points into the wall, keeping `restitution` of
@@ -172,12 +178,11 @@ WEIR_HD inline void collide(Vec3& x, Vec3& v, const SphParams& params, const Obs
     }
 }
 
-// Time integration (semi-implicit Euler by default; the paper's explicit Euler selectable),
-// collision response, and the blow-up checks.
-WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams& params,
-                                const ObstacleView& obstacles, FaultRecord* fault, int step) {
-    Vec3 x = pv.position(i), v = pv.velocity(i);
-    const Vec3 a = pv.acc[i].xyz();
+// Time integration of one particle (semi-implicit Euler by default; the paper's explicit Euler
+// selectable), collision response, and the blow-up checks; updates x and v in place.
+WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
+                                    const SphParams& params, const ObstacleView& obstacles,
+                                    FaultRecord* fault, int step) {
     const Real dt = params.timeStep;
     if (params.integrator == IntegratorKind::SemiImplicitEuler) {
         v += a * dt;
@@ -205,8 +210,31 @@ WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams
         fault->particle = i;
         fault->value = float(std::sqrt(speed2));
     }
+}
+
+// The paper's displacement stage: integrates particle i with the acceleration of the force stage.
+WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams& params,
+                                const ObstacleView& obstacles, FaultRecord* fault, int step) {
+    Vec3 x = pv.position(i), v = pv.velocity(i);
+    advanceParticle(x, v, pv.acc[i].xyz(), i, params, obstacles, fault, step);
     pv.pos[i] = Real4::from(x);
     pv.vel[i] = Real4::from(v, pv.vel[i].w);  // keeps the step's density for output
+}
+
+// Force and displacement fused: the new state goes to separate arrays, since other particles
+// still read this one's position and velocity in the same pass. Saves the acceleration array
+// and a pass over the particles.
+template <class Neighbours>
+WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                             const SphParams& params,
+                                             const ObstacleView& obstacles, FaultRecord* fault,
+                                             int step, Real4* newPos, Real4* newVel) {
+    const Vec3 a = accelerationOf(i, pv, nb, params);
+    const Real4 v4 = pv.vel[i];
+    Vec3 x = pv.position(i), v = v4.xyz();
+    advanceParticle(x, v, a, i, params, obstacles, fault, step);
+    newPos[i] = Real4::from(x);
+    newVel[i] = Real4::from(v, v4.w);
 }
 
 }  // namespace weir

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdlib>
 #include <numeric>
 #include <utility>
 
@@ -12,6 +13,12 @@
 #include "solver/simulation.h"
 
 namespace weir {
+
+// Cells per smoothing radius of the dense table (WEIR_EXPERIMENT_REACH overrides, tuning only).
+inline int experimentReach() {
+    const char* reach = std::getenv("WEIR_EXPERIMENT_REACH");
+    return reach != nullptr ? std::atoi(reach) : kDenseCellsPerRadius;
+}
 
 template <class Exec>
 class SphSolver final : public Simulation {
@@ -27,9 +34,9 @@ class SphSolver final : public Simulation {
                               Vec3d(setup.grid.origin) +
                                   Vec3d(setup.grid.dims[0], setup.grid.dims[1], setup.grid.dims[2]) *
                                       double(setup.grid.cellSize),
-                              double(setup.grid.cellSize) / DenseGrid<Exec>::kCellsPerRadius,
+                              double(setup.grid.cellSize) / experimentReach(),
                               1 << 21),
-                 DenseGrid<Exec>::kCellsPerRadius) {
+                 experimentReach()) {
         const HostParticles& host = setup.particles;
         n_ = Index(host.size());
         std::vector<Real4> pos(n_), vel(n_);
@@ -42,7 +49,9 @@ class SphSolver final : public Simulation {
         exec_.upload(pos_, pos.data(), n_);
         exec_.upload(vel_, vel.data(), n_);
         exec_.upload(id_, ids.data(), n_);
-        acc_.resize(n_);
+        if (mode_ != NeighbourMode::Dense) {
+            acc_.resize(n_);  // the dense path fuses force and displacement
+        }
         if (mode_ != NeighbourMode::Brute) {
             sortedPos_.resize(n_);
             sortedVel_.resize(n_);
@@ -111,13 +120,15 @@ class SphSolver final : public Simulation {
             case NeighbourMode::Dense:
                 buildGrid();
                 computeDensityPressure(dense_.view());
-                computeAcceleration(dense_.view());
+                accelerateAndIntegrate(dense_.view());
                 break;
             default:
                 computeDensityPressure(BruteNeighbours{n_});
                 computeAcceleration(BruteNeighbours{n_});
         }
-        integrate();
+        if (mode_ != NeighbourMode::Dense) {
+            integrate();
+        }
         ++steps_;
         if (exec_.timing) {
             exec_.collectTimes(times_);
@@ -135,10 +146,16 @@ class SphSolver final : public Simulation {
                 withNeighbours([&](const auto& nb) { computeDensityPressure(nb); });
                 break;
             case Stage::Force:
-                withNeighbours([&](const auto& nb) { computeAcceleration(nb); });
+                if (mode_ == NeighbourMode::Dense) {
+                    accelerateAndIntegrate(dense_.view());
+                } else {
+                    withNeighbours([&](const auto& nb) { computeAcceleration(nb); });
+                }
                 break;
             case Stage::Integrate:
-                integrate();
+                if (mode_ != NeighbourMode::Dense) {
+                    integrate();
+                }
                 break;
         }
     }
@@ -203,6 +220,27 @@ class SphSolver final : public Simulation {
         const ParticleView pv = view();
         const SphParams params = params_;
         exec_.forEach(n_, [=] WEIR_HD(Index i) { accelerationAt(i, pv, nb, params); });
+        exec_.stageEnd("force");
+    }
+
+    // Force and displacement in one pass (dense path): timed as "force".
+    template <class Neighbours>
+    void accelerateAndIntegrate(const Neighbours& nb) {
+        exec_.stageBegin("force");
+        const ParticleView pv = view();
+        const SphParams params = params_;
+        const ObstacleView obstacles{boxes_.data(), int(boxes_.size()), spheres_.data(),
+                                     int(spheres_.size())};
+        FaultRecord* fault = fault_.data();
+        int* counter = stepCounter_.data();
+        Real4 *newPos = sortedPos_.data(), *newVel = sortedVel_.data();
+        exec_.forEach(n_, [=] WEIR_HD(Index i) {
+            accelerateAndIntegrateAt(i, pv, nb, params, obstacles, fault, *counter, newPos,
+                                     newVel);
+        });
+        exec_.forEach(1, [=] WEIR_HD(Index) { ++*counter; });
+        pos_.swap(sortedPos_);
+        vel_.swap(sortedVel_);
         exec_.stageEnd("force");
     }
 
