@@ -93,7 +93,7 @@ double neighboursPerParticle(const HostParticles& p, const GridSpec& spec, Real 
     for (Index i = 0; i < n; ++i) {
         pos[i] = unsorted[grid.permutation()[i]];
     }
-    DenseGridNeighbours view = grid.view();
+    DenseGridNeighbours view = grid.view(pos.data(), h);
     double total = 0;
 #pragma omp parallel for reduction(+ : total)
     for (Index i = 0; i < n; ++i) {

@@ -4,19 +4,13 @@
 
 #include <cuda/functional>
 
-#include <cstdlib>
 #include <sstream>
 
 #include "core/exec_cuda.cuh"
 
 namespace weir {
 
-CudaExec::CudaExec() {
-    WEIR_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
-    if (const char* block = std::getenv("WEIR_EXPERIMENT_BLOCK")) {  // tuning runs only
-        blockSize_ = std::atoi(block);
-    }
-}
+CudaExec::CudaExec() { WEIR_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking)); }
 
 CudaExec::~CudaExec() {
     for (cudaEvent_t e : eventPool_) {

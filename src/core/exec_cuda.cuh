@@ -111,8 +111,8 @@ class CudaExec {
         if (n <= 0) {
             return;
         }
-        unsigned blocks = unsigned((std::int64_t(n) + blockSize_ - 1) / blockSize_);
-        forEachKernel<<<blocks, blockSize_, 0, stream_>>>(n, f);
+        unsigned blocks = unsigned((std::int64_t(n) + kBlockSize - 1) / kBlockSize);
+        forEachKernel<<<blocks, kBlockSize, 0, stream_>>>(n, f);
         WEIR_CUDA_CHECK(cudaGetLastError());
 #ifndef NDEBUG
         cudaStreamCaptureStatus capturing = cudaStreamCaptureStatusNone;
@@ -196,7 +196,6 @@ class CudaExec {
     void download1(void* dst, const void* src, std::size_t bytes);
     cudaEvent_t takeEvent();
 
-    int blockSize_ = kBlockSize;
     cudaStream_t stream_ = nullptr;
     DeviceBuffer<unsigned char> sortTemp_, scanTemp_;
     std::vector<cudaEvent_t> eventPool_;

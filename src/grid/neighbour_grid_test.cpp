@@ -136,7 +136,11 @@ TEST_P(DenseGridVersusBrute, SameNeighboursAsBruteForce) {
         for (std::uint64_t c = 0; c < cells; ++c) {
             ASSERT_LE(bound[c], bound[c + 1]);
         }
-        DenseGridNeighbours view = grid.view();
+        std::vector<Real4> sortedPos(n);
+        for (Index i = 0; i < n; ++i) {
+            sortedPos[i] = pos[order[i]];
+        }
+        DenseGridNeighbours view = grid.view(sortedPos.data(), h);
         for (Index i = 0; i < n; ++i) {
             Index pi = order[i];
             std::vector<int> found;

@@ -14,12 +14,6 @@
 
 namespace weir {
 
-// Cells per smoothing radius of the dense table (WEIR_EXPERIMENT_REACH overrides, tuning only).
-inline int experimentReach() {
-    const char* reach = std::getenv("WEIR_EXPERIMENT_REACH");
-    return reach != nullptr ? std::atoi(reach) : kDenseCellsPerRadius;
-}
-
 template <class Exec>
 class SphSolver final : public Simulation {
    public:
@@ -34,9 +28,9 @@ class SphSolver final : public Simulation {
                               Vec3d(setup.grid.origin) +
                                   Vec3d(setup.grid.dims[0], setup.grid.dims[1], setup.grid.dims[2]) *
                                       double(setup.grid.cellSize),
-                              double(setup.grid.cellSize) / experimentReach(),
+                              double(setup.grid.cellSize) / kDenseCellsPerRadius,
                               1 << 21),
-                 experimentReach()) {
+                 kDenseCellsPerRadius) {
         const HostParticles& host = setup.particles;
         n_ = Index(host.size());
         std::vector<Real4> pos(n_), vel(n_);
@@ -102,7 +96,7 @@ class SphSolver final : public Simulation {
                 break;
             case NeighbourMode::Dense:
                 buildGrid();
-                computeDensityPressure(dense_.view());
+                computeDensityPressure(denseView());
                 break;
             default:
                 computeDensityPressure(BruteNeighbours{n_});
@@ -119,8 +113,8 @@ class SphSolver final : public Simulation {
                 break;
             case NeighbourMode::Dense:
                 buildGrid();
-                computeDensityPressure(dense_.view());
-                accelerateAndIntegrate(dense_.view());
+                computeDensityPressure(denseView());
+                accelerateAndIntegrate(denseView());
                 break;
             default:
                 computeDensityPressure(BruteNeighbours{n_});
@@ -147,7 +141,7 @@ class SphSolver final : public Simulation {
                 break;
             case Stage::Force:
                 if (mode_ == NeighbourMode::Dense) {
-                    accelerateAndIntegrate(dense_.view());
+                    accelerateAndIntegrate(denseView());
                 } else {
                     withNeighbours([&](const auto& nb) { computeAcceleration(nb); });
                 }
@@ -160,6 +154,13 @@ class SphSolver final : public Simulation {
         }
     }
 
+    DenseGridNeighbours denseView() const {
+        static const int pruning = std::getenv("WEIR_EXPERIMENT_PRUNING")
+                                       ? std::atoi(std::getenv("WEIR_EXPERIMENT_PRUNING"))
+                                       : 2;  // tuning runs only
+        return dense_.view(pos_.data(), params_.kernel.h, pruning);
+    }
+
     template <class F>
     void withNeighbours(F&& f) {
         switch (mode_) {
@@ -167,7 +168,7 @@ class SphSolver final : public Simulation {
                 f(sparse_.view());
                 break;
             case NeighbourMode::Dense:
-                f(dense_.view());
+                f(denseView());
                 break;
             default:
                 f(BruteNeighbours{n_});
