@@ -1,7 +1,5 @@
 // `weir bench`: the paper's Tables 1-3 (per-stage times of CPU, GPU and optimized GPU) on this
 // machine, at any particle counts, as terminal tables, CSV, JSON and a plot.
-#include <nlohmann/json.hpp>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "cli/commands.h"
@@ -123,10 +122,10 @@ std::string fixed(double v, int digits) {
 
 int benchCommand(const BenchOptions& options) {
     try {
-        Scene scene = options.scene.empty() ? builtinScene("dam_break")
-                                            : (std::filesystem::exists(options.scene)
-                                                   ? loadScene(options.scene)
-                                                   : builtinScene(options.scene));
+        Scene scene = options.scene.empty()
+                          ? builtinScene("dam_break")
+                          : (std::filesystem::exists(options.scene) ? loadScene(options.scene)
+                                                                    : builtinScene(options.scene));
         std::vector<std::int64_t> sizes;
         for (const std::string& s : splitList(options.sizes)) {
             sizes.push_back(parseCount(s));
@@ -184,8 +183,8 @@ int benchCommand(const BenchOptions& options) {
             const Index n = Index(setup.particles.size());
             // A fluid in motion: advance on the fastest backend, then start every column there.
             {
-                auto mover = makeSimulation(gpu ? Backend::Cuda : Backend::Cpu,
-                                            NeighbourMode::Grid, setup);
+                auto mover =
+                    makeSimulation(gpu ? Backend::Cuda : Backend::Cpu, NeighbourMode::Grid, setup);
                 int settleSteps = int(std::lround(options.settle / setup.params.timeStep));
                 mover->advance(settleSteps);
                 FaultRecord fault = mover->fault();
@@ -310,10 +309,11 @@ int benchCommand(const BenchOptions& options) {
         // Terminal tables in the paper's layout.
         const std::string baseline = "cpu-brute";
         for (const auto& run : record["runs"]) {
-            std::printf("\nTable: computation time and speedup for %lld particles (time in ms, "
-                        "%.1f neighbours per particle)\n",
-                        (long long)run["particles"].get<std::int64_t>(),
-                        run["neighboursPerParticle"].get<double>());
+            std::printf(
+                "\nTable: computation time and speedup for %lld particles (time in ms, "
+                "%.1f neighbours per particle)\n",
+                (long long)run["particles"].get<std::int64_t>(),
+                run["neighboursPerParticle"].get<double>());
             std::printf("%-26s", "Operations");
             for (const Column& c : columns) {
                 std::printf("%16s", c.title.c_str());
@@ -324,9 +324,9 @@ int benchCommand(const BenchOptions& options) {
                 if (r.contains("skipped")) {
                     return "skipped";
                 }
-                return fixed(stage.empty() ? r["totalMs"].get<double>()
-                                           : r["stages"][stage].get<double>(),
-                             4);
+                return fixed(
+                    stage.empty() ? r["totalMs"].get<double>() : r["stages"][stage].get<double>(),
+                    4);
             };
             for (const auto& [stage, title] : kStageRows) {
                 std::printf("%-26s", title.c_str());
@@ -342,8 +342,9 @@ int benchCommand(const BenchOptions& options) {
             std::printf("\n%-26s", "Full step (no events)");
             for (const Column& c : columns) {
                 const auto& r = run["columns"][c.name];
-                std::printf("%16s", r.contains("stepMs") ? fixed(r["stepMs"].get<double>(), 4).c_str()
-                                                         : "-");
+                std::printf("%16s", r.contains("stepMs")
+                                        ? fixed(r["stepMs"].get<double>(), 4).c_str()
+                                        : "-");
             }
             std::printf("\n%-26s", "Speedup over CPU");
             const auto& base = run["columns"].value(baseline, nlohmann::json::object());
@@ -351,8 +352,7 @@ int benchCommand(const BenchOptions& options) {
                 const auto& r = run["columns"][c.name];
                 if (base.contains("totalMs") && r.contains("totalMs")) {
                     std::printf("%16s",
-                                fixed(base["totalMs"].get<double>() / r["totalMs"].get<double>(),
-                                      2)
+                                fixed(base["totalMs"].get<double>() / r["totalMs"].get<double>(), 2)
                                     .c_str());
                 } else {
                     std::printf("%16s", "-");
@@ -372,8 +372,7 @@ int benchCommand(const BenchOptions& options) {
                     auto row = [&](const std::string& stage, double ms) {
                         out << run["particles"].get<std::int64_t>() << ","
                             << run["neighboursPerParticle"].get<double>() << "," << name << ","
-                            << stage << "," << ms << "," << (r.contains("skipped") ? 1 : 0)
-                            << "\n";
+                            << stage << "," << ms << "," << (r.contains("skipped") ? 1 : 0) << "\n";
                     };
                     if (r.contains("skipped")) {
                         row("total", 0);

@@ -506,8 +506,9 @@ TEST_F(Cli, LongContainerRunsOnTheDenseTableOnly) {
 TEST_F(Cli, BenchTimesEveryStageOfEveryColumn) {
     // A smoke test of `weir bench` at a tiny size: asserts that every stage was timed and the
     // files were written, not how fast anything is.
-    RunResult run = weir("bench --sizes 400,800 --steps 3 --warmup 1 --settle 0.01 --budget 60 "
-                         "--backends cpu-brute,cpu-grid,cpu-dense --no-plot --out b");
+    RunResult run = weir(
+        "bench --sizes 400,800 --steps 3 --warmup 1 --settle 0.01 --budget 60 "
+        "--backends cpu-brute,cpu-grid,cpu-dense --no-plot --out b");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_TRUE(contains(run.output, "Pressure computation")) << run.output;
     std::ifstream in(path("b/bench.json"));

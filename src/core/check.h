@@ -23,19 +23,19 @@ class SimulationError : public std::runtime_error {
 
 }  // namespace weir
 
-#define WEIR_CUDA_CHECK(expr)                                                              \
-    do {                                                                                   \
-        cudaError_t weirErr_ = (expr);                                                     \
-        if (weirErr_ != cudaSuccess) {                                                     \
+#define WEIR_CUDA_CHECK(expr)                                                                \
+    do {                                                                                     \
+        cudaError_t weirErr_ = (expr);                                                       \
+        if (weirErr_ != cudaSuccess) {                                                       \
             ::weir::throwCudaError(#expr, __FILE__, __LINE__, cudaGetErrorString(weirErr_)); \
-        }                                                                                  \
+        }                                                                                    \
     } while (0)
 
-#define WEIR_REQUIRE(cond, msg)                                                        \
-    do {                                                                               \
-        if (!(cond)) {                                                                 \
-            std::ostringstream weirMsg_;                                               \
-            weirMsg_ << msg;                                                           \
-            throw ::weir::SimulationError(weirMsg_.str());                             \
-        }                                                                              \
+#define WEIR_REQUIRE(cond, msg)                            \
+    do {                                                   \
+        if (!(cond)) {                                     \
+            std::ostringstream weirMsg_;                   \
+            weirMsg_ << msg;                               \
+            throw ::weir::SimulationError(weirMsg_.str()); \
+        }                                                  \
     } while (0)

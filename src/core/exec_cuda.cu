@@ -1,16 +1,16 @@
 // CUDA primitives: CUB radix sort and scan with persistent scratch, event timing, device info.
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
-
 #include <cuda/functional>
-
 #include <sstream>
 
 #include "core/exec_cuda.cuh"
 
 namespace weir {
 
-CudaExec::CudaExec() { WEIR_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking)); }
+CudaExec::CudaExec() {
+    WEIR_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
+}
 
 CudaExec::~CudaExec() {
     for (cudaEvent_t e : eventPool_) {
@@ -106,9 +106,9 @@ std::string CudaExec::deviceName() const {
     int driver = 0;
     cudaDriverGetVersion(&driver);
     std::ostringstream s;
-    s << prop.name << ", " << prop.multiProcessorCount << " SMs, "
-      << (prop.totalGlobalMem >> 20) << " MiB, compute " << prop.major << "." << prop.minor
-      << ", driver CUDA " << driver / 1000 << "." << (driver % 1000) / 10;
+    s << prop.name << ", " << prop.multiProcessorCount << " SMs, " << (prop.totalGlobalMem >> 20)
+      << " MiB, compute " << prop.major << "." << prop.minor << ", driver CUDA " << driver / 1000
+      << "." << (driver % 1000) / 10;
     return s.str();
 }
 

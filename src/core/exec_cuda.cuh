@@ -134,14 +134,14 @@ class CudaExec {
     template <class T>
     void upload(Buffer<T>& dst, const T* src, std::size_t n) {
         dst.resize(n);
-        WEIR_CUDA_CHECK(cudaMemcpyAsync(dst.data(), src, n * sizeof(T), cudaMemcpyHostToDevice,
-                                        stream_));
+        WEIR_CUDA_CHECK(
+            cudaMemcpyAsync(dst.data(), src, n * sizeof(T), cudaMemcpyHostToDevice, stream_));
         WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
     }
     template <class T>
     void download(const Buffer<T>& src, T* dst, std::size_t n) {
-        WEIR_CUDA_CHECK(cudaMemcpyAsync(dst, src.data(), n * sizeof(T), cudaMemcpyDeviceToHost,
-                                        stream_));
+        WEIR_CUDA_CHECK(
+            cudaMemcpyAsync(dst, src.data(), n * sizeof(T), cudaMemcpyDeviceToHost, stream_));
         WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
     }
     template <class T>

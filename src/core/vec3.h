@@ -63,6 +63,7 @@ WEIR_HD inline T length(const Vec3T<T>& a) {
 
 using Vec3 = Vec3T<Real>;
 using Vec3d = Vec3T<double>;
+using Vec3f = Vec3T<float>;
 
 // A 3-vector padded to 16 (float) or 32 (double) bytes, so that one particle's position or
 // velocity is one aligned vector load on the GPU. w is free for a scalar.

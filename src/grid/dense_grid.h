@@ -28,14 +28,15 @@ struct DenseGridNeighbours {
     const Real4* pos;             // positions, in the same (sorted) order
     Vec3 origin;
     Real cellSize;
-    Real h2;                      // squared smoothing radius
+    Real h2;  // squared smoothing radius
     int nx, ny, nz;
-    int reach;                    // cells per smoothing radius: rows span +-reach cells
-    int pruning;                  // 0: full block, 1: skip far rows, 2: and cut rows to the chord
+    int reach;  // cells per smoothing radius: rows span +-reach cells
 
-    // Calls f(j) for every particle j that can lie within h of particle i (i included). Rows
-    // whose slab is farther than h are skipped, and each row's X run is cut to the chord of the
-    // sphere at the row's nearest point: about half the candidates of the full 5 x 5 x 5 block.
+    // Calls f(j) for every particle j that can lie within h of particle i (i included): the
+    // X runs of the 5 x 5 rows around i's cell, less the rows whose (Y, Z) slab is farther than
+    // h (the 4 corner rows and more near slab edges). Cutting each run further to the sphere's
+    // chord visits fewer candidates but measured slower (bench/NOTES.md: the branchy bounds cost
+    // more than the candidates they save), so runs stay whole.
     template <class F>
     WEIR_HD void forEachCandidate(Index i, F&& f) const {
         const CellKey cell = particleCell[i];
@@ -43,31 +44,22 @@ struct DenseGridNeighbours {
         const CellKey rest = cell / CellKey(nx);
         const int cz = int(rest % CellKey(nz)), cy = int(rest / CellKey(nz));
         const Real4 p = pos[i];
-        const Real invCell = Real(1) / cellSize;
         const int yLo = cy >= reach ? cy - reach : 0, yHi = cy + reach < ny ? cy + reach : ny - 1;
         const int zLo = cz >= reach ? cz - reach : 0, zHi = cz + reach < nz ? cz + reach : nz - 1;
         for (int y = yLo; y <= yHi; ++y) {
             const Real dy = slabDistance(p.y, origin.y + Real(y) * cellSize);
             const Real remY = h2 - dy * dy;
-            if (pruning > 0 && remY <= Real(0)) {
+            if (remY <= Real(0)) {
                 continue;
             }
             for (int z = zLo; z <= zHi; ++z) {
                 const Real dz = slabDistance(p.z, origin.z + Real(z) * cellSize);
                 const Real rem = remY - dz * dz;
-                if (pruning > 0 && rem <= Real(0)) {
+                if (rem <= Real(0)) {
                     continue;
                 }
-                int xLo = cx - reach, xHi = cx + reach;
-                if (pruning > 1) {
-                    const Real halfChord = std::sqrt(rem);
-                    const int chordLo = floorToInt((p.x - halfChord - origin.x) * invCell);
-                    const int chordHi = floorToInt((p.x + halfChord - origin.x) * invCell);
-                    xLo = chordLo > xLo ? chordLo : xLo;
-                    xHi = chordHi < xHi ? chordHi : xHi;
-                }
-                xLo = xLo < 0 ? 0 : xLo;
-                xHi = xHi > nx - 1 ? nx - 1 : xHi;
+                const int xLo = cx >= reach ? cx - reach : 0;
+                const int xHi = cx + reach < nx ? cx + reach : nx - 1;
                 const CellKey row = denseCellIndex(0, y, z, nx, nz);
                 const Index end = cellBound[row + CellKey(xHi) + 1];
                 for (Index j = cellBound[row + CellKey(xLo)]; j < end; ++j) {
@@ -75,12 +67,6 @@ struct DenseGridNeighbours {
                 }
             }
         }
-    }
-
-    // floor() as an int without a library call (x86-64 without SSE4.1 has no floor instruction).
-    WEIR_HD static int floorToInt(Real v) {
-        int t = int(v);
-        return t - (v < Real(t) ? 1 : 0);
     }
 
     // Distance from coordinate v to the slab [lo, lo + cellSize] (0 inside).
@@ -95,8 +81,8 @@ constexpr int kDenseCellsPerRadius = 2;
 // Whether the dense table suits a grid of h-wide cells for n particles: at most 8 of its h/2
 // cells per particle (plus a floor for small runs), and linear indices that fit in 31 bits.
 inline bool denseGridSuits(const GridSpec& radiusGrid, std::int64_t n) {
-    const std::uint64_t cells = totalCells(radiusGrid) * kDenseCellsPerRadius *
-                                kDenseCellsPerRadius * kDenseCellsPerRadius;
+    const std::uint64_t cells =
+        totalCells(radiusGrid) * kDenseCellsPerRadius * kDenseCellsPerRadius * kDenseCellsPerRadius;
     return cells < (std::uint64_t(1) << 31) && cells <= std::uint64_t(8 * n + (1 << 20));
 }
 
@@ -137,10 +123,17 @@ class DenseGrid {
     }
 
     // The neighbour view for positions `pos` in cell order and smoothing radius h.
-    DenseGridNeighbours view(const Real4* pos, Real h, int pruning = 2) const {
-        return {cellBound_.data(), sort_.sortedKeys(), pos,    spec_.origin,  spec_.cellSize,
-                h * h,             spec_.dims[0],      spec_.dims[1], spec_.dims[2], reach_,
-                pruning};
+    DenseGridNeighbours view(const Real4* pos, Real h) const {
+        return {cellBound_.data(),
+                sort_.sortedKeys(),
+                pos,
+                spec_.origin,
+                spec_.cellSize,
+                h * h,
+                spec_.dims[0],
+                spec_.dims[1],
+                spec_.dims[2],
+                reach_};
     }
     const Index* permutation() const { return sort_.permutation(); }
     const GridSpec& spec() const { return spec_; }

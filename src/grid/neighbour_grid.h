@@ -97,7 +97,8 @@ class NeighbourGrid {
         // Step 1: the cell id of every particle (paper Figure 3 layout).
         GridSpec spec = spec_;
         CellKey* keys = sort_.keys();
-        exec.forEach(n, [=] WEIR_HD(Index i) { keys[i] = spec.keyOf(pos[i].x, pos[i].y, pos[i].z); });
+        exec.forEach(n,
+                     [=] WEIR_HD(Index i) { keys[i] = spec.keyOf(pos[i].x, pos[i].y, pos[i].z); });
         // Step 2: radix sort by cell id.
         sort_.sort(exec, kCellKeyBits);
         buildCellTable(exec);
@@ -169,8 +170,7 @@ class NeighbourGrid {
     }
 
     GridNeighbours view() const {
-        return {particleCell_.data(), neighbourTable_.data(), cellStart_.data(),
-                cellCount_.data()};
+        return {particleCell_.data(), neighbourTable_.data(), cellStart_.data(), cellCount_.data()};
     }
     const Index* permutation() const { return sort_.permutation(); }
     const GridSpec& spec() const { return spec_; }

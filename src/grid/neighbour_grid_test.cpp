@@ -78,8 +78,8 @@ TEST_P(GridVersusBrute, SameNeighboursAsBruteForce) {
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dz = -1; dz <= 1; ++dz) {
                 for (int dx = -1; dx <= 1; ++dx) {
-                    Index e = grid.neighbourTable().data()[c * kNeighbourCells +
-                                                           neighbourSlot(dx, dy, dz)];
+                    Index e = grid.neighbourTable()
+                                  .data()[c * kNeighbourCells + neighbourSlot(dx, dy, dz)];
                     int x = home.x + dx, y = home.y + dy, z = home.z + dz;
                     bool inGrid = x >= 0 && y >= 0 && z >= 0 && x < grid.spec().dims[0] &&
                                   y < grid.spec().dims[1] && z < grid.spec().dims[2];

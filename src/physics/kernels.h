@@ -13,9 +13,9 @@ constexpr double kPi = 3.14159265358979323846;
 // Constant factors of the kernels for one smoothing radius h.
 struct KernelCoefficients {
     Real h = 1, h2 = 1, invH = 1, invH2 = 1;
-    Real poly6 = 0;       // 315 / (64 pi h^3):      W(r)      = poly6 * (1 - q^2)^3
-    Real spikyGrad = 0;   // -45 / (pi h^4):         grad W(r) = spikyGrad * (1 - q)^2 * r / |r|
-    Real viscLaplace = 0; // 45 / (pi h^5):          lap W(r)  = viscLaplace * (1 - q)
+    Real poly6 = 0;        // 315 / (64 pi h^3):      W(r)      = poly6 * (1 - q^2)^3
+    Real spikyGrad = 0;    // -45 / (pi h^4):         grad W(r) = spikyGrad * (1 - q)^2 * r / |r|
+    Real viscLaplace = 0;  // 45 / (pi h^5):          lap W(r)  = viscLaplace * (1 - q)
 
     static KernelCoefficients forRadius(double h) {
         KernelCoefficients k;

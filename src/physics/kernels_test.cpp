@@ -73,8 +73,9 @@ TEST(Kernels, GradientSumsToZeroOnASymmetricLattice) {
     double previous = 1e9;
     for (double ratio : {2.0, 3.0, 4.0}) {
         LatticeSums s = latticeSums(ratio, 0.01, shifted);
-        double magnitude = std::sqrt(s.grad[0] * s.grad[0] + s.grad[1] * s.grad[1] +
-                                     s.grad[2] * s.grad[2]) * (ratio * 0.01);
+        double magnitude =
+            std::sqrt(s.grad[0] * s.grad[0] + s.grad[1] * s.grad[1] + s.grad[2] * s.grad[2]) *
+            (ratio * 0.01);
         EXPECT_LT(magnitude, previous) << "h/d = " << ratio;
         previous = magnitude;
     }
@@ -95,9 +96,11 @@ TEST(Kernels, ShapeAndSupport) {
     EXPECT_NEAR(viscosityLaplacian(k, Real(0.1)), 0, 1e-3);
     // Magnitudes against the closed forms at r = h/2.
     double h = 0.1, r = 0.05;
-    EXPECT_NEAR(poly6(k, Real(r * r)), 315.0 / (64 * kPi * std::pow(h, 9)) * std::pow(h * h - r * r, 3),
+    EXPECT_NEAR(poly6(k, Real(r * r)),
+                315.0 / (64 * kPi * std::pow(h, 9)) * std::pow(h * h - r * r, 3),
                 1e-3 * poly6(k, Real(r * r)));
-    EXPECT_NEAR(spikyGradientFactor(k, Real(r)) * r, -45.0 / (kPi * std::pow(h, 6)) * (h - r) * (h - r),
+    EXPECT_NEAR(spikyGradientFactor(k, Real(r)) * r,
+                -45.0 / (kPi * std::pow(h, 6)) * (h - r) * (h - r),
                 1e-3 * std::fabs(spikyGradientFactor(k, Real(r)) * r));
     EXPECT_NEAR(viscosityLaplacian(k, Real(r)), 45.0 / (kPi * std::pow(h, 6)) * (h - r),
                 1e-3 * viscosityLaplacian(k, Real(r)));

@@ -56,8 +56,8 @@ WEIR_HD inline bool claimFault(FaultRecord* record, FaultCode code) {
     return atomicCAS(&record->code, 0, int(code)) == 0;
 #else
     int expected = 0;
-    return __atomic_compare_exchange_n(&record->code, &expected, int(code), false,
-                                       __ATOMIC_RELAXED, __ATOMIC_RELAXED);
+    return __atomic_compare_exchange_n(&record->code, &expected, int(code), false, __ATOMIC_RELAXED,
+                                       __ATOMIC_RELAXED);
 #endif
 }
 
@@ -67,9 +67,8 @@ WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Nei
                                       const SphParams& params) {
     const Vec3 xi = pv.position(i);
     Real sum = 0;
-    nb.forEachCandidate(i, [&](Index j) {
-        sum += poly6(params.kernel, lengthSquared(xi - pv.position(j)));
-    });
+    nb.forEachCandidate(
+        i, [&](Index j) { sum += poly6(params.kernel, lengthSquared(xi - pv.position(j))); });
     pv.vel[i].w = params.mass * sum;
 }
 
@@ -78,8 +77,8 @@ WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Nei
 WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r, Real invR, Real pi,
                               Real pj, Real rhoj, const Vec3& vi, const Vec3& vj) {
     const Real massOverRho = params.mass / rhoj;
-    Real pressure = -massOverRho * Real(0.5) * (pi + pj) *
-                    spikyGradientFactor(params.kernel, r, invR);
+    Real pressure =
+        -massOverRho * Real(0.5) * (pi + pj) * spikyGradientFactor(params.kernel, r, invR);
     Real viscous = params.viscosity * massOverRho * viscosityLaplacian(params.kernel, r);
     return rVec * pressure + (vj - vi) * viscous;
 }
@@ -123,7 +122,8 @@ WEIR_HD inline void reflectVelocity(Vec3& v, const Vec3& n, const SphParams& par
 
 // The paper's simple collision response: particles are put back on the container walls and off
 // obstacle boxes and spheres, and lose their velocity into the surface.
-WEIR_HD inline void collide(Vec3& x, Vec3& v, const SphParams& params, const ObstacleView& obstacles) {
+WEIR_HD inline void collide(Vec3& x, Vec3& v, const SphParams& params,
+                            const ObstacleView& obstacles) {
     for (int a = 0; a < 3; ++a) {
         Vec3 n;
         if (x[a] < params.boxMin[a]) {
@@ -194,8 +194,8 @@ WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
     collide(x, v, params, obstacles);
 
     const Real speed2 = lengthSquared(v);
-    const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) &&
-                        std::isfinite(speed2);
+    const bool finite =
+        std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(speed2);
     FaultCode code = FaultCode::None;
     if (!finite) {
         code = FaultCode::NotFinite;
@@ -226,9 +226,9 @@ WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams
 // and a pass over the particles.
 template <class Neighbours>
 WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, const Neighbours& nb,
-                                             const SphParams& params,
-                                             const ObstacleView& obstacles, FaultRecord* fault,
-                                             int step, Real4* newPos, Real4* newVel) {
+                                             const SphParams& params, const ObstacleView& obstacles,
+                                             FaultRecord* fault, int step, Real4* newPos,
+                                             Real4* newVel) {
     const Vec3 a = accelerationOf(i, pv, nb, params);
     const Real4 v4 = pv.vel[i];
     Vec3 x = pv.position(i), v = v4.xyz();

@@ -389,8 +389,8 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
         scene.obstacleSpheres.push_back(readSphere(r));
     });
 
-    FieldReader fluid = top.object("fluid", {"restDensity", "viscosity", "stiffness",
-                                             "clampNegativePressure"});
+    FieldReader fluid =
+        top.object("fluid", {"restDensity", "viscosity", "stiffness", "clampNegativePressure"});
     scene.restDensity = fluid.number("restDensity", kPositive, scene.restDensity);
     scene.viscosity = fluid.optionalNumber("viscosity", atLeast(0));
     scene.stiffness = fluid.optionalNumber("stiffness", kPositive);

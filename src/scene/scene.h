@@ -44,24 +44,26 @@ struct Scene {
     std::string sourcePath;      // file it came from ("<built-in NAME>" for built-ins)
     std::string description;     // "description", free text, optional
 
-    Box container;                          // "container": {"min": [..], "max": [..]}, metres
-    std::vector<FluidBlock> blocks;         // "blocks": [{"min","max","velocity"?}]
-    std::vector<FluidSphere> spheres;       // "spheres": [{"center","radius","velocity"?}]
-    std::vector<Box> obstacleBoxes;         // "obstacles": {"boxes": [{"min","max"}], ...
+    Box container;                             // "container": {"min": [..], "max": [..]}, metres
+    std::vector<FluidBlock> blocks;            // "blocks": [{"min","max","velocity"?}]
+    std::vector<FluidSphere> spheres;          // "spheres": [{"center","radius","velocity"?}]
+    std::vector<Box> obstacleBoxes;            // "obstacles": {"boxes": [{"min","max"}], ...
     std::vector<SphereShape> obstacleSpheres;  //   "spheres": [{"center","radius"}]}
 
     // "fluid": {...}
-    double restDensity = 1000.0;         // "restDensity", kg/m^3, > 0
-    std::optional<double> viscosity;     // "viscosity", dynamic mu of eq. 5, Pa s, >= 0; unset: derived
-    std::optional<double> stiffness;     // "stiffness", k of eq. 3, m^2/s^2, > 0; unset: derived
+    double restDensity = 1000.0;  // "restDensity", kg/m^3, > 0
+    std::optional<double>
+        viscosity;  // "viscosity", dynamic mu of eq. 5, Pa s, >= 0; unset: derived
+    std::optional<double> stiffness;  // "stiffness", k of eq. 3, m^2/s^2, > 0; unset: derived
     // "clampNegativePressure": eq. 3 gives negative pressure where the free surface lacks
-    // neighbours; it pulls surface particles together and throws jets off walls. Clamped by default.
+    // neighbours; it pulls surface particles together and throws jets off walls. Clamped by
+    // default.
     bool clampNegativePressure = true;
 
     // "particles": {"spacing": s} or {"count": n} (exactly one; neither: count 20000)
-    std::optional<double> spacing;             // metres, > 0
-    std::optional<std::int64_t> particleCount; // > 0
-    double smoothingRatio = 2.0;               // "particles.smoothingRatio": h / spacing, in [1.2, 5]
+    std::optional<double> spacing;              // metres, > 0
+    std::optional<std::int64_t> particleCount;  // > 0
+    double smoothingRatio = 2.0;  // "particles.smoothingRatio": h / spacing, in [1.2, 5]
 
     Vec3d gravity{0.0, -9.81, 0.0};  // "gravity": [gx, gy, gz], m/s^2
 
@@ -69,8 +71,9 @@ struct Scene {
     std::optional<double> timeStep;  // "timeStep", s, > 0; unset: derived (CFL)
     double duration = 2.0;           // "duration", s, > 0
     double frameRate = 30.0;         // "frameRate", frames per simulated second, > 0
-    Integrator integrator = Integrator::SemiImplicitEuler;  // "integrator":
-                                                           // "semi-implicit-euler" | "explicit-euler"
+    Integrator integrator =
+        Integrator::SemiImplicitEuler;  // "integrator":
+                                        // "semi-implicit-euler" | "explicit-euler"
 
     // "walls": {...}
     double wallRestitution = 0.0;  // "restitution", in [0, 1]: normal speed kept after a bounce

@@ -67,15 +67,16 @@ void forEachSeed(const Scene& scene, double d, F&& visit) {
     };
     for (std::size_t b = 0; b < scene.blocks.size(); ++b) {
         const FluidBlock& block = scene.blocks[b];
-        lattice(block.box.min, block.box.max, [](const Vec3d&) { return true; }, block.velocity,
-                b);
+        lattice(
+            block.box.min, block.box.max, [](const Vec3d&) { return true; }, block.velocity, b);
     }
     for (std::size_t s = 0; s < scene.spheres.size(); ++s) {
         const FluidSphere& sphere = scene.spheres[s];
         Vec3d r(sphere.sphere.radius, sphere.sphere.radius, sphere.sphere.radius);
-        lattice(sphere.sphere.center - r, sphere.sphere.center + r,
-                [&](const Vec3d& p) { return insideSphere(p, sphere.sphere); }, sphere.velocity,
-                scene.blocks.size() + s);
+        lattice(
+            sphere.sphere.center - r, sphere.sphere.center + r,
+            [&](const Vec3d& p) { return insideSphere(p, sphere.sphere); }, sphere.velocity,
+            scene.blocks.size() + s);
     }
 }
 
@@ -228,8 +229,8 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     if (report.expectedSpeed <= 0) {
         report.expectedSpeed = 0.1;
     }
-    say("expected top speed " + fmt(report.expectedSpeed) + " m/s = sqrt(2 g H) + initial, H = " +
-        fmt(report.fluidHeight) + " m");
+    say("expected top speed " + fmt(report.expectedSpeed) +
+        " m/s = sqrt(2 g H) + initial, H = " + fmt(report.fluidHeight) + " m");
 
     // Stiffness: speed of sound ten times the top speed keeps density within ~1% (Monaghan).
     double stiffness;
@@ -298,8 +299,9 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     p.viscosity = Real(viscosity);
     p.gravity = Vec3(scene.gravity);
     p.timeStep = Real(dt);
-    p.integrator = scene.integrator == Integrator::ExplicitEuler ? IntegratorKind::ExplicitEuler
-                                                                 : IntegratorKind::SemiImplicitEuler;
+    p.integrator = scene.integrator == Integrator::ExplicitEuler
+                       ? IntegratorKind::ExplicitEuler
+                       : IntegratorKind::SemiImplicitEuler;
     p.boxMin = Vec3(scene.container.min);
     p.boxMax = Vec3(scene.container.max);
     p.restitution = Real(scene.wallRestitution);

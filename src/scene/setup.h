@@ -18,16 +18,16 @@ struct SetupOptions {
 
 // What was chosen and why, for logs, --explain and benchmarks.
 struct SetupReport {
-    double spacing = 0;          // particle spacing d, m
-    double smoothingRadius = 0;  // h, m
-    double fluidVolume = 0;      // m^3
-    double fluidHeight = 0;      // deepest fluid column along gravity, m
-    double expectedSpeed = 0;    // largest speed expected from the fall height and initial speeds
-    double speedOfSound = 0;     // sqrt(k), m/s
-    double latticeKernelSum = 0; // sum of poly6 * d^3 over a full lattice (1 for an exact kernel)
+    double spacing = 0;           // particle spacing d, m
+    double smoothingRadius = 0;   // h, m
+    double fluidVolume = 0;       // m^3
+    double fluidHeight = 0;       // deepest fluid column along gravity, m
+    double expectedSpeed = 0;     // largest speed expected from the fall height and initial speeds
+    double speedOfSound = 0;      // sqrt(k), m/s
+    double latticeKernelSum = 0;  // sum of poly6 * d^3 over a full lattice (1 for an exact kernel)
     int stepsPerFrame = 0;
-    double frameInterval = 0;    // s
-    std::int64_t frames = 0;     // frames after frame 0
+    double frameInterval = 0;           // s
+    std::int64_t frames = 0;            // frames after frame 0
     std::vector<std::string> lines;     // one per decision, human-readable
     std::vector<std::string> warnings;  // settings likely to make the fluid misbehave
 };

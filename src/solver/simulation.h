@@ -82,6 +82,7 @@ std::unique_ptr<Simulation> makeSimulation(Backend backend, NeighbourMode mode,
 std::size_t bytesPerParticleEstimate(NeighbourMode mode);
 
 // Throws SimulationError naming how many particles would fit if `count` do not fit in `freeBytes`.
-void checkMemoryFits(Index count, NeighbourMode mode, std::size_t freeBytes, const std::string& where);
+void checkMemoryFits(Index count, NeighbourMode mode, std::size_t freeBytes,
+                     const std::string& where);
 
 }  // namespace weir

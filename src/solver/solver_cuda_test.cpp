@@ -9,9 +9,9 @@ namespace {
 
 using namespace weir::testing;
 
-#define SKIP_WITHOUT_GPU()                                  \
-    if (!cudaDeviceAvailable()) {                           \
-        GTEST_SKIP() << "no CUDA device visible";           \
+#define SKIP_WITHOUT_GPU()                        \
+    if (!cudaDeviceAvailable()) {                 \
+        GTEST_SKIP() << "no CUDA device visible"; \
     }
 
 class CudaModes : public ::testing::TestWithParam<NeighbourMode> {};
@@ -122,8 +122,9 @@ TEST(CudaSolver, ConservesMomentum) {
     for (std::size_t i = 0; i < before.size(); ++i) {
         p0 += Vec3d(before.vx[i], before.vy[i], before.vz[i]);
         p1 += Vec3d(after.vx[i], after.vy[i], after.vz[i]);
-        scale += std::sqrt(double(before.vx[i]) * before.vx[i] + double(before.vy[i]) * before.vy[i] +
-                           double(before.vz[i]) * before.vz[i]);
+        scale +=
+            std::sqrt(double(before.vx[i]) * before.vx[i] + double(before.vy[i]) * before.vy[i] +
+                      double(before.vz[i]) * before.vz[i]);
     }
     EXPECT_LT(length(p1 - p0), 1e-4 * scale);
 }

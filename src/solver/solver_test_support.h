@@ -17,7 +17,8 @@ inline Scene smallDamBreak(int particles = 2000) {
         "name": "small_dam_break",
         "container": {"min": [0, 0, 0], "max": [0.6, 0.4, 0.2]},
         "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.25, 0.2]}],
-        "particles": {"count": )" + std::to_string(particles) + R"(}
+        "particles": {"count": )" +
+                          std::to_string(particles) + R"(}
     })",
                       "<test small_dam_break>");
 }

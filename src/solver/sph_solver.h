@@ -24,13 +24,13 @@ class SphSolver final : public Simulation {
         : mode_(mode),
           params_(setup.params),
           sparse_(mode == NeighbourMode::Grid ? setup.grid : GridSpec{}),
-          dense_(makeGridSpec(Vec3d(setup.grid.origin),
-                              Vec3d(setup.grid.origin) +
-                                  Vec3d(setup.grid.dims[0], setup.grid.dims[1], setup.grid.dims[2]) *
-                                      double(setup.grid.cellSize),
-                              double(setup.grid.cellSize) / kDenseCellsPerRadius,
-                              1 << 21),
-                 kDenseCellsPerRadius) {
+          dense_(
+              makeGridSpec(Vec3d(setup.grid.origin),
+                           Vec3d(setup.grid.origin) +
+                               Vec3d(setup.grid.dims[0], setup.grid.dims[1], setup.grid.dims[2]) *
+                                   double(setup.grid.cellSize),
+                           double(setup.grid.cellSize) / kDenseCellsPerRadius, 1 << 21),
+              kDenseCellsPerRadius) {
         const HostParticles& host = setup.particles;
         n_ = Index(host.size());
         std::vector<Real4> pos(n_), vel(n_);
@@ -154,12 +154,7 @@ class SphSolver final : public Simulation {
         }
     }
 
-    DenseGridNeighbours denseView() const {
-        static const int pruning = std::getenv("WEIR_EXPERIMENT_PRUNING")
-                                       ? std::atoi(std::getenv("WEIR_EXPERIMENT_PRUNING"))
-                                       : 2;  // tuning runs only
-        return dense_.view(pos_.data(), params_.kernel.h, pruning);
-    }
+    DenseGridNeighbours denseView() const { return dense_.view(pos_.data(), params_.kernel.h); }
 
     template <class F>
     void withNeighbours(F&& f) {
@@ -236,8 +231,7 @@ class SphSolver final : public Simulation {
         int* counter = stepCounter_.data();
         Real4 *newPos = sortedPos_.data(), *newVel = sortedVel_.data();
         exec_.forEach(n_, [=] WEIR_HD(Index i) {
-            accelerateAndIntegrateAt(i, pv, nb, params, obstacles, fault, *counter, newPos,
-                                     newVel);
+            accelerateAndIntegrateAt(i, pv, nb, params, obstacles, fault, *counter, newPos, newVel);
         });
         exec_.forEach(1, [=] WEIR_HD(Index) { ++*counter; });
         pos_.swap(sortedPos_);
@@ -253,9 +247,8 @@ class SphSolver final : public Simulation {
                                      int(spheres_.size())};
         FaultRecord* fault = fault_.data();
         int* counter = stepCounter_.data();
-        exec_.forEach(n_, [=] WEIR_HD(Index i) {
-            integrateAt(i, pv, params, obstacles, fault, *counter);
-        });
+        exec_.forEach(
+            n_, [=] WEIR_HD(Index i) { integrateAt(i, pv, params, obstacles, fault, *counter); });
         // The step number lives on the device, so a replayed graph records the right one.
         exec_.forEach(1, [=] WEIR_HD(Index) { ++*counter; });
         exec_.stageEnd("integrate");
@@ -294,10 +287,10 @@ class SphSolver final : public Simulation {
     NeighbourMode neighbourMode() const override { return mode_; }
     std::string deviceName() const override { return exec_.deviceName(); }
     std::size_t bytesHeld() const override {
-        std::size_t bytes = (pos_.size() + vel_.size() + acc_.size() + sortedPos_.size() +
-                             sortedVel_.size()) *
-                                sizeof(Real4) +
-                            (id_.size() + sortedId_.size()) * sizeof(Index);
+        std::size_t bytes =
+            (pos_.size() + vel_.size() + acc_.size() + sortedPos_.size() + sortedVel_.size()) *
+                sizeof(Real4) +
+            (id_.size() + sortedId_.size()) * sizeof(Index);
         return bytes + (mode_ == NeighbourMode::Grid ? sparse_.bytesHeld() : 0) +
                (mode_ == NeighbourMode::Dense ? dense_.bytesHeld() : 0);
     }
