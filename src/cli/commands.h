@@ -23,6 +23,7 @@ struct RunOptions {
     std::string format = "vtu";
     bool explain = false;
     bool quiet = false;
+    bool render = false;  // also render each frame to <out>/images/ (weir_render)
 };
 
 struct BenchOptions {
@@ -37,7 +38,52 @@ struct BenchOptions {
     bool noPlot = false;
 };
 
-int runCommand(const RunOptions& options);
+// `weir render` and `weir view` (src/render/, built when its libraries are found).
+struct RenderOptions {
+    std::string framesDir;
+    std::string outDir;  // empty: <framesDir>/images
+    int width = 1280;
+    int height = 720;
+    std::string color = "speed";
+    std::string camera;  // "yaw,pitch,distance"; empty: framed on the container
+    std::string target;  // "x,y,z"; empty: the container's centre
+    std::string scene;   // scene whose container and obstacles are drawn; empty: none
+    std::string video;   // an .mp4 made from the images with ffmpeg; empty: none
+    bool surface = false;
+    int samples = 4;
+    bool quiet = false;
+};
+
+struct ViewOptions {
+    std::string scene;
+    std::string backend = "auto";
+    std::string neighbours = "auto";
+    std::optional<std::int64_t> particles;
+    int width = 1280;
+    int height = 720;
+    std::string color = "speed";
+    std::string camera;
+    std::string target;
+    std::int64_t maxFrames = 0;  // quit after this many drawn frames; 0: when closed
+};
+
+struct Scene;
+struct SetupReport;
+struct HostParticles;
+
+// Sees what `weir run` writes, e.g. to render it: start() before the simulation is made, then
+// every frame.
+class RunObserver {
+   public:
+    virtual ~RunObserver() = default;
+    virtual void start(const Scene& scene, const SetupReport& report, const std::string& outDir) = 0;
+    virtual void frame(std::int64_t index, double time, const HostParticles& particles) = 0;
+};
+
+// A scene file path or a built-in scene's name; empty: the built-in dam break.
+Scene resolveScene(const std::string& spec);
+
+int runCommand(const RunOptions& options, RunObserver* observer = nullptr);
 int benchCommand(const BenchOptions& options);
 int infoCommand();
 

@@ -11,8 +11,6 @@
 
 namespace weir {
 
-namespace {
-
 Scene resolveScene(const std::string& spec) {
     if (spec.empty()) {
         return builtinScene("dam_break");
@@ -28,9 +26,7 @@ Scene resolveScene(const std::string& spec) {
     return loadScene(spec);  // reports the missing file
 }
 
-}  // namespace
-
-int runCommand(const RunOptions& options) {
+int runCommand(const RunOptions& options, RunObserver* observer) {
     try {
         Scene scene = resolveScene(options.scene);
         SetupOptions setupOptions;
@@ -55,6 +51,9 @@ int runCommand(const RunOptions& options) {
         for (const std::string& warning : report.warnings) {
             std::cerr << "weir: warning: " << warning << "\n";
         }
+        if (observer != nullptr) {
+            observer->start(scene, report, outDir);
+        }
         auto sim = makeSimulation(backend, mode, std::move(setup));
         std::cerr << "weir: " << sim->particleCount() << " particles on " << backendName(backend)
                   << " (" << sim->deviceName() << "), " << neighbourModeName(mode)
@@ -67,6 +66,9 @@ int runCommand(const RunOptions& options) {
         sim->computeDensity();
         sim->download(host);
         writer.write(0, 0.0, host);
+        if (observer != nullptr) {
+            observer->frame(0, 0.0, host);
+        }
         Progress progress(frames, options.quiet);
         for (std::int64_t frame = 1; frame <= frames; ++frame) {
             sim->advance(report.stepsPerFrame);
@@ -80,6 +82,9 @@ int runCommand(const RunOptions& options) {
             }
             sim->download(host);
             writer.write(int(frame), double(frame) * report.frameInterval, host);
+            if (observer != nullptr) {
+                observer->frame(frame, double(frame) * report.frameInterval, host);
+            }
             progress.update(frame, sim->time(), sim->stepCount());
         }
         progress.finish();

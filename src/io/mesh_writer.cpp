@@ -1,0 +1,121 @@
+// OBJ as text through a bounded buffer; PLY as an ASCII header and raw little-endian records.
+#include "io/mesh_writer.h"
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <ostream>
+#include <stdexcept>
+
+#include "io/atomic_file.h"
+#include "io/io_util.h"
+
+namespace weir {
+
+static_assert(std::endian::native == std::endian::little, "the PLY writer emits native bytes");
+
+MeshFormat parseMeshFormat(const std::string& text) {
+    if (text == "obj") {
+        return MeshFormat::Obj;
+    }
+    if (text == "ply") {
+        return MeshFormat::Ply;
+    }
+    throw std::invalid_argument("unknown mesh format '" + text + "': allowed are obj, ply");
+}
+
+std::string meshExtension(MeshFormat format) { return format == MeshFormat::Obj ? "obj" : "ply"; }
+
+void writeObj(const std::string& path, const TriangleMesh& mesh) {
+    writeFileAtomically(path, [&](std::ostream& out) {
+        std::string buffer;
+        buffer.reserve(1 << 16);
+        const auto flush = [&](bool always) {
+            if (always || buffer.size() > (1 << 16) - 256) {
+                out.write(buffer.data(), std::streamsize(buffer.size()));
+                buffer.clear();
+            }
+        };
+        const auto vector = [&](const char* tag, const Vec3f& v) {
+            buffer += tag;
+            for (int a = 0; a < 3; ++a) {
+                buffer += ' ';
+                buffer += numberText(v[a]);
+            }
+            buffer += '\n';
+            flush(false);
+        };
+        buffer += "# weir fluid surface: " + std::to_string(mesh.vertexCount()) + " vertices, " +
+                  std::to_string(mesh.triangleCount()) + " triangles\n";
+        for (const Vec3f& p : mesh.positions) {
+            vector("v", p);
+        }
+        for (const Vec3f& n : mesh.normals) {
+            vector("vn", n);
+        }
+        for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+            buffer += 'f';
+            for (int k = 0; k < 3; ++k) {
+                const std::string index = std::to_string(mesh.indices[3 * t + k] + 1ull);
+                buffer += ' ';
+                buffer += index;
+                if (!mesh.normals.empty()) {
+                    buffer += "//";
+                    buffer += index;
+                }
+            }
+            buffer += '\n';
+            flush(false);
+        }
+        flush(true);
+    });
+}
+
+void writeMeshPly(const std::string& path, const TriangleMesh& mesh) {
+    if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
+        throw std::invalid_argument("mesh for '" + path + "' has " +
+                                    std::to_string(mesh.normals.size()) + " normals for " +
+                                    std::to_string(mesh.positions.size()) + " vertices");
+    }
+    writeFileAtomically(path, [&](std::ostream& out) {
+        out << "ply\n"
+               "format binary_little_endian 1.0\n"
+               "comment weir fluid surface\n"
+               "element vertex "
+            << mesh.vertexCount()
+            << "\n"
+               "property float x\nproperty float y\nproperty float z\n"
+               "property float nx\nproperty float ny\nproperty float nz\n"
+               "element face "
+            << mesh.triangleCount()
+            << "\n"
+               "property list uchar uint vertex_indices\n"
+               "end_header\n";
+        const bool hasNormals = !mesh.normals.empty();
+        writeSequence<float>(out, 6 * mesh.vertexCount(), [&](std::size_t i) {
+            const std::size_t v = i / 6;
+            const int k = int(i % 6);
+            return k < 3 ? mesh.positions[v][k] : (hasNormals ? mesh.normals[v][k - 3] : 0.0f);
+        });
+        // 13 bytes per face: the count 3, then three uint32 indices.
+        constexpr std::size_t kFaceBytes = 1 + 3 * sizeof(std::uint32_t);
+        writeSequence<char>(out, kFaceBytes * mesh.triangleCount(), [&](std::size_t i) {
+            const std::size_t t = i / kFaceBytes, byte = i % kFaceBytes;
+            if (byte == 0) {
+                return char(3);
+            }
+            const std::uint32_t index = mesh.indices[3 * t + (byte - 1) / 4];
+            return char((index >> (8 * ((byte - 1) % 4))) & 0xff);
+        });
+    });
+}
+
+void writeMesh(const std::string& path, MeshFormat format, const TriangleMesh& mesh) {
+    if (format == MeshFormat::Obj) {
+        writeObj(path, mesh);
+    } else {
+        writeMeshPly(path, mesh);
+    }
+}
+
+}  // namespace weir

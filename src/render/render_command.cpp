@@ -1,0 +1,419 @@
+// `weir render` (frames directory in, one PNG per frame and optionally an MP4 out) and
+// `weir run --render`.
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "cli/progress.h"
+#include "io/frame_reader.h"
+#include "render/egl_context.h"
+#include "render/gl.h"
+#include "render/render_commands.h"
+#include "render/renderer.h"
+#include "scene/setup.h"
+
+extern char** environ;
+
+namespace weir {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+struct FrameEntry {
+    int index = 0;
+    double time = 0;
+    std::string path;
+};
+
+// The frames listed in <dir>/frames.json, in index order; IoError naming the file and field.
+std::vector<FrameEntry> readFrameIndex(const std::string& dir) {
+    const std::string indexPath = (fs::path(dir) / "frames.json").string();
+    std::ifstream in(indexPath);
+    if (!in) {
+        throw IoError("cannot read '" + indexPath + "': no such file (is '" + dir +
+                      "' the output directory of `weir run`?)");
+    }
+    nlohmann::json index;
+    try {
+        in >> index;
+    } catch (const nlohmann::json::exception& e) {
+        throw IoError("cannot read '" + indexPath + "': not JSON (" + e.what() + ")");
+    }
+    auto bad = [&](const std::string& field, const std::string& what) {
+        return IoError("frames index '" + indexPath + "': field '" + field + "' " + what);
+    };
+    if (!index.is_object() || !index.contains("frames") || !index["frames"].is_array()) {
+        throw bad("frames", "is missing or not an array");
+    }
+    std::vector<FrameEntry> frames;
+    for (std::size_t i = 0; i < index["frames"].size(); ++i) {
+        const nlohmann::json& entry = index["frames"][i];
+        const std::string at = "frames[" + std::to_string(i) + "]";
+        if (!entry.is_object() || !entry.contains("index") || !entry["index"].is_number_integer() ||
+            entry["index"].get<long long>() < 0) {
+            throw bad(at + ".index", "is missing or not an integer >= 0");
+        }
+        if (!entry.contains("time") || !entry["time"].is_number()) {
+            throw bad(at + ".time", "is missing or not a number");
+        }
+        if (!entry.contains("file") || !entry["file"].is_string() ||
+            entry["file"].get<std::string>().empty()) {
+            throw bad(at + ".file", "is missing or not a file name");
+        }
+        frames.push_back({entry["index"].get<int>(), entry["time"].get<double>(),
+                          (fs::path(dir) / entry["file"].get<std::string>()).string()});
+    }
+    if (frames.empty()) {
+        throw bad("frames", "lists no frames");
+    }
+    std::sort(frames.begin(), frames.end(),
+              [](const FrameEntry& a, const FrameEntry& b) { return a.index < b.index; });
+    return frames;
+}
+
+HostParticles readFrame(const std::string& path) {
+    const std::string extension = fs::path(path).extension().string();
+    if (extension == ".vtu") {
+        return readVtu(path);
+    }
+    if (extension == ".ply") {
+        return readPly(path);
+    }
+    if (extension == ".csv") {
+        return readCsv(path);
+    }
+    throw IoError("cannot read '" + path + "': unknown frame format '" + extension +
+                  "' (allowed: .vtu, .ply, .csv)");
+}
+
+std::string imageName(std::int64_t index) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05lld.png", static_cast<long long>(index));
+    return name;
+}
+
+bool programOnPath(const std::string& program) {
+    const char* path = std::getenv("PATH");
+    std::stringstream dirs(path != nullptr ? path : "");
+    for (std::string dir; std::getline(dirs, dir, ':');) {
+        const fs::path candidate = fs::path(dir.empty() ? "." : dir) / program;
+        if (::access(candidate.c_str(), X_OK) == 0 && !fs::is_directory(candidate)) {
+            return true;
+        }
+    }
+    return false;
+}
+
+const char* kNoFfmpeg =
+    "--video needs ffmpeg on PATH (Debian/Ubuntu: apt-get install ffmpeg); nothing was rendered";
+
+// Encodes images <dir>/frame_<first..first+count-1>.png into an H.264 MP4 (yuv420p, so that
+// every player takes it), written to a temporary name and renamed.
+void encodeVideo(const std::string& imagesDir, int first, int count, double fps,
+                 const std::string& outFile) {
+    const fs::path out(outFile);
+    if (out.has_parent_path()) {
+        fs::create_directories(out.parent_path());
+    }
+    const std::string partial =
+        (out.parent_path() / (out.stem().string() + ".tmp." + std::to_string(::getpid()) + ".mp4"))
+            .string();
+    char rate[32];
+    std::snprintf(rate, sizeof rate, "%.6g", fps);
+    std::vector<std::string> args = {"ffmpeg",
+                                     "-hide_banner",
+                                     "-loglevel",
+                                     "error",
+                                     "-y",
+                                     "-framerate",
+                                     rate,
+                                     "-start_number",
+                                     std::to_string(first),
+                                     "-i",
+                                     (fs::path(imagesDir) / "frame_%05d.png").string(),
+                                     "-frames:v",
+                                     std::to_string(count),
+                                     "-vf",
+                                     "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                     "-c:v",
+                                     "libx264",
+                                     "-pix_fmt",
+                                     "yuv420p",
+                                     "-movflags",
+                                     "+faststart",
+                                     partial};
+    std::vector<char*> argv;
+    for (std::string& arg : args) {
+        argv.push_back(arg.data());
+    }
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    if (posix_spawnp(&pid, "ffmpeg", nullptr, nullptr, argv.data(), environ) != 0) {
+        throw IoError(kNoFfmpeg);
+    }
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        std::error_code ignored;
+        fs::remove(partial, ignored);
+        throw IoError("ffmpeg could not make '" + outFile + "' from the images in '" + imagesDir +
+                      "' (see its message above)");
+    }
+    fs::rename(partial, outFile);
+}
+
+// A progress line for rendering: live on a terminal, one line per tenth otherwise.
+class RenderProgress {
+   public:
+    RenderProgress(std::size_t total, bool quiet)
+        : total_(total), quiet_(quiet), live_(::isatty(::fileno(stderr)) != 0) {}
+    void update(std::size_t done, double elapsed) {
+        if (quiet_ || (!live_ && done != total_ && done % std::max<std::size_t>(total_ / 10, 1))) {
+            return;
+        }
+        char line[160];
+        std::snprintf(line, sizeof line, "render %zu/%zu  %.0f ms/image  elapsed %s  ETA %s", done,
+                      total_, 1000 * elapsed / double(done), formatDuration(elapsed).c_str(),
+                      formatDuration(elapsed * double(total_ - done) / double(done)).c_str());
+        std::fprintf(stderr, live_ ? "\r%s\033[K" : "%s\n", line);
+        std::fflush(stderr);
+    }
+    void finish() {
+        if (live_ && !quiet_) {
+            std::fprintf(stderr, "\n");
+        }
+    }
+
+   private:
+    std::size_t total_;
+    bool quiet_;
+    bool live_;
+};
+
+// The container of the particles of all frames, padded by a particle radius, where no scene says.
+Box particleBounds(const HostParticles& p, Box box, double pad) {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const Vec3d x{double(p.x[i]), double(p.y[i]), double(p.z[i])};
+        for (int a = 0; a < 3; ++a) {
+            box.min[a] = std::min(box.min[a], x[a] - pad);
+            box.max[a] = std::max(box.max[a], x[a] + pad);
+        }
+    }
+    return box;
+}
+
+// Validates what every drawing command shares.
+void checkImageSize(int width, int height) {
+    if (width < 16 || width > 16384 || height < 16 || height > 16384) {
+        throw std::invalid_argument("--width " + std::to_string(width) + " --height " +
+                                    std::to_string(height) +
+                                    ": each must be within 16..16384 pixels");
+    }
+}
+
+// Draws frames of one run to <imagesDir>/frame_NNNNN.png: an EGL context, the renderer and a
+// fixed camera.
+class FrameImager {
+   public:
+    FrameImager(const SceneGeometry& geometry, const std::string& imagesDir, int width, int height,
+                const OrbitCamera& camera, ColourField field, int samples)
+        : imagesDir_(imagesDir), width_(width), height_(height), camera_(camera), field_(field) {
+        fs::create_directories(imagesDir_);
+        renderer_.setGeometry(geometry);
+        renderer_.setSamples(samples);
+    }
+    const std::string& contextDescription() const { return context_.description(); }
+    void setColourRange(const ValueRange& range) { renderer_.setColourRange(range); }
+    void setRadius(double radius) { radius_ = radius; }
+    double radius() const { return radius_; }
+
+    void render(std::int64_t index, const HostParticles& particles) {
+        const auto start = Clock::now();
+        renderer_.setParticles(particles, field_, radius_);
+        writePng((fs::path(imagesDir_) / imageName(index)).string(),
+                 renderer_.renderImage(camera_, width_, height_));
+        seconds_ += secondsSince(start);
+        ++images_;
+    }
+    int images() const { return images_; }
+    double secondsPerImage() const { return images_ > 0 ? seconds_ / images_ : 0; }
+
+   private:
+    OffscreenContext context_;  // made current before the renderer is built
+    Renderer renderer_;
+    std::string imagesDir_;
+    int width_, height_;
+    OrbitCamera camera_;
+    ColourField field_;
+    double radius_ = 0.01;
+    int images_ = 0;
+    double seconds_ = 0;
+};
+
+// `weir run --render`: the scene's geometry and physics fix the camera and colour range.
+class RunRenderer : public RunObserver {
+   public:
+    void start(const Scene& scene, const SetupReport& report, const std::string& outDir) override {
+        const RenderOptions defaults;
+        const ColourField field = parseColourField(defaults.color);
+        imagesDir_ = (fs::path(outDir) / "images").string();
+        const double aspect = double(defaults.width) / defaults.height;
+        imager_ = std::make_unique<FrameImager>(
+            SceneGeometry::of(scene), imagesDir_, defaults.width, defaults.height,
+            frameBox(scene.container, aspect), field, defaults.samples);
+        const double g = length(scene.gravity);
+        imager_->setColourRange(physicalRange(field, scene.restDensity, report.expectedSpeed,
+                                              scene.restDensity * g * report.fluidHeight));
+        imager_->setRadius(0.5 * report.spacing);
+        std::cerr << "weir: rendering each frame to " << imagesDir_ << "/ ("
+                  << imager_->contextDescription() << ")\n";
+    }
+    void frame(std::int64_t index, double, const HostParticles& particles) override {
+        imager_->render(index, particles);
+    }
+    void report() const {
+        if (imager_ && imager_->images() > 0) {
+            std::cerr << "weir: " << imager_->images() << " images in " << imagesDir_ << "/ ("
+                      << std::lround(imager_->secondsPerImage() * 1000) << " ms each)\n";
+        }
+    }
+
+   private:
+    std::unique_ptr<FrameImager> imager_;
+    std::string imagesDir_;
+};
+
+int reportError(const std::exception& e, int code) {
+    std::cerr << "weir: error: " << e.what() << "\n";
+    return code;
+}
+
+}  // namespace
+
+int renderCommand(const RenderOptions& options) {
+    try {
+        checkImageSize(options.width, options.height);
+        const ColourField field = parseColourField(options.color);
+        if (!options.video.empty()) {
+            if (fs::path(options.video).extension() != ".mp4") {
+                throw std::invalid_argument("--video '" + options.video +
+                                            "': the file name must end in .mp4");
+            }
+            if (!programOnPath("ffmpeg")) {
+                throw IoError(kNoFfmpeg);
+            }
+        }
+        if (options.surface) {
+            throw std::invalid_argument(
+                "--surface: drawing surface meshes from frames is not available yet (the mesh "
+                "reader is not in this build); render particles instead");
+        }
+        if (options.samples < 1 || options.samples > 16) {
+            throw std::invalid_argument("--samples " + std::to_string(options.samples) +
+                                        " must be within 1..16");
+        }
+        const std::vector<FrameEntry> frames = readFrameIndex(options.framesDir);
+        const std::string imagesDir =
+            options.outDir.empty() ? (fs::path(options.framesDir) / "images").string()
+                                   : options.outDir;
+        std::optional<Scene> scene;
+        if (!options.scene.empty()) {
+            scene = resolveScene(options.scene);
+        }
+
+        // A first pass over the frames fixes what must not change between images: the colour
+        // range (so that a colour means one value in the whole video) and, without a scene, the
+        // box the camera frames.
+        const auto start = Clock::now();
+        const HostParticles first = readFrame(frames.front().path);
+        const double radius = estimateParticleRadius(first);
+        ValueRange range = robustRange(fieldValues(first, field), field);
+        Box bounds{{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+        bounds = particleBounds(first, bounds, radius);
+        for (std::size_t i = 1; i < frames.size(); ++i) {
+            const HostParticles p = readFrame(frames[i].path);
+            range = unite(range, robustRange(fieldValues(p, field), field));
+            if (!scene) {
+                bounds = particleBounds(p, bounds, radius);
+            }
+        }
+        SceneGeometry geometry;
+        geometry.container = bounds;
+        if (scene) {
+            geometry = SceneGeometry::of(*scene);
+        } else if (!(bounds.max.x >= bounds.min.x)) {
+            geometry.container = {{0, 0, 0}, {1, 1, 1}};  // frames without particles
+        }
+        const OrbitCamera camera =
+            commandLineCamera(geometry.container, double(options.width) / options.height,
+                              options.camera, options.target);
+
+        FrameImager imager(geometry, imagesDir, options.width, options.height, camera, field,
+                           options.samples);
+        imager.setColourRange(range);
+        imager.setRadius(radius);
+        if (!options.quiet) {
+            std::cerr << "weir: rendering " << frames.size() << " frames of " << options.framesDir
+                      << " to " << imagesDir << "/ (" << options.width << "x" << options.height
+                      << ", " << colourFieldName(field) << " " << range.lo << ".." << range.hi
+                      << " " << colourFieldUnit(field) << "; " << imager.contextDescription()
+                      << ")\n";
+        }
+        RenderProgress progress(frames.size(), options.quiet);
+        const auto renderStart = Clock::now();
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            imager.render(frames[i].index,
+                          i == 0 ? first : readFrame(frames[i].path));
+            progress.update(i + 1, secondsSince(renderStart));
+        }
+        progress.finish();
+        std::cerr << "weir: " << frames.size() << " images in " << imagesDir << "/, "
+                  << std::lround(imager.secondsPerImage() * 1000) << " ms per image to draw, "
+                  << formatDuration(secondsSince(start)) << " in all\n";
+
+        if (!options.video.empty()) {
+            const bool contiguous =
+                frames.back().index - frames.front().index + 1 == int(frames.size());
+            if (!contiguous) {
+                std::cerr << "weir: warning: frame indices have gaps; the video stops at the "
+                             "first gap\n";
+            }
+            const double interval =
+                frames.size() > 1 ? (frames.back().time - frames.front().time) /
+                                        double(frames.back().index - frames.front().index)
+                                  : 0;
+            const double fps = interval > 0 ? 1.0 / interval : 30.0;
+            encodeVideo(imagesDir, frames.front().index, int(frames.size()), fps, options.video);
+            std::cerr << "weir: video " << options.video << " (H.264, " << fps << " frames/s)\n";
+        }
+        return kExitOk;
+    } catch (const std::invalid_argument& e) {
+        return reportError(e, kExitUsage);
+    } catch (const std::exception& e) {
+        return reportError(e, kExitError);
+    }
+}
+
+int runRenderCommand(const RunOptions& options) {
+    RunRenderer renderer;
+    const int code = runCommand(options, &renderer);
+    renderer.report();
+    return code;
+}
+
+}  // namespace weir

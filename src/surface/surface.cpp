@@ -1,0 +1,191 @@
+// Surface planning (spacing, lattice, limits), the CPU instantiation and the backend dispatch.
+#include "surface/surface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <vector>
+
+#include "core/exec_cpu.h"
+#include "surface/surface_field.h"
+#include "surface/surface_pipeline.h"
+
+namespace weir {
+
+#if defined(WEIR_HAS_CUDA)
+TriangleMesh reconstructSurfaceCuda(const HostParticles& particles, const SurfacePlan& plan);
+#endif
+
+namespace {
+
+std::string text(double value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+
+void requireNonNegative(double value, const char* name, const char* zeroMeans) {
+    if (!(value >= 0) || !std::isfinite(value)) {
+        throw std::invalid_argument(std::string(name) + " is " + text(value) +
+                                    ", must be a number > 0 (or 0 for " + zeroMeans + ")");
+    }
+}
+
+}  // namespace
+
+double estimateParticleSpacing(const HostParticles& particles) {
+    const std::size_t n = particles.size();
+    std::vector<std::uint32_t> byX(n);
+    std::iota(byX.begin(), byX.end(), 0u);
+    std::sort(byX.begin(), byX.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return particles.x[a] < particles.x[b];
+    });
+    const auto distance2 = [&](std::uint32_t a, std::uint32_t b) {
+        const double dx = double(particles.x[a]) - particles.x[b];
+        const double dy = double(particles.y[a]) - particles.y[b];
+        const double dz = double(particles.z[a]) - particles.z[b];
+        return dx * dx + dy * dy + dz * dz;
+    };
+    // Nearest neighbours by a sweep along x from each sampled particle, stopped once the x gap
+    // alone exceeds the best distance found.
+    const std::size_t samples = std::min<std::size_t>(n, 4096);
+    std::vector<double> nearest;
+    nearest.reserve(samples);
+    for (std::size_t s = 0; s < samples; ++s) {
+        const std::size_t k = s * n / samples;
+        const std::uint32_t i = byX[k];
+        double best2 = std::numeric_limits<double>::infinity();
+        for (int direction : {-1, 1}) {
+            for (std::size_t m = k;;) {
+                if ((direction < 0 && m == 0) || (direction > 0 && m + 1 == n)) {
+                    break;
+                }
+                m = direction < 0 ? m - 1 : m + 1;
+                const double gap = double(particles.x[byX[m]]) - particles.x[i];
+                if (gap * gap >= best2) {
+                    break;
+                }
+                const double d2 = distance2(i, byX[m]);
+                if (d2 > 0 && d2 < best2) {
+                    best2 = d2;
+                }
+            }
+        }
+        if (std::isfinite(best2)) {
+            nearest.push_back(std::sqrt(best2));
+        }
+    }
+    if (nearest.empty()) {
+        return 0;
+    }
+    std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
+    return nearest[nearest.size() / 2];
+}
+
+SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& options) {
+    requireNonNegative(options.spacing, "spacing", "an estimate from the particles");
+    requireNonNegative(options.cellSize, "cell size", "half the particle spacing");
+    if (!(options.kernelRadiusRatio >= 1 && options.kernelRadiusRatio <= 5)) {
+        throw std::invalid_argument("kernel radius ratio is " + text(options.kernelRadiusRatio) +
+                                    ", must be in [1, 5] particle spacings");
+    }
+    if (options.maxSamples < 8) {
+        throw std::invalid_argument("sample limit is " + text(double(options.maxSamples)) +
+                                    ", must be at least 8");
+    }
+    const std::size_t n = particles.size();
+    if (n == 0) {
+        throw SurfaceError("there are no particles to build a surface from");
+    }
+    SurfacePlan plan;
+    plan.particleMin = Vec3d(particles.x[0], particles.y[0], particles.z[0]);
+    plan.particleMax = plan.particleMin;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec3d p(particles.x[i], particles.y[i], particles.z[i]);
+        for (int a = 0; a < 3; ++a) {
+            if (!std::isfinite(p[a])) {
+                throw SurfaceError("particle " + std::to_string(i) + " has position " + text(p.x) +
+                                   " " + text(p.y) + " " + text(p.z) +
+                                   ", every coordinate must be finite");
+            }
+            plan.particleMin[a] = std::min(plan.particleMin[a], p[a]);
+            plan.particleMax[a] = std::max(plan.particleMax[a], p[a]);
+        }
+    }
+
+    plan.spacing = options.spacing;
+    if (plan.spacing == 0) {
+        plan.spacing = estimateParticleSpacing(particles);
+        plan.spacingEstimated = true;
+        if (!(plan.spacing > 0)) {
+            throw SurfaceError("cannot estimate the particle spacing from " + std::to_string(n) +
+                               " particle(s) at one point; give the spacing");
+        }
+    }
+    const double ratio = options.kernelRadiusRatio;
+    plan.kernelRadius = ratio * plan.spacing;
+    plan.particleRadius = zhuBridsonParticleRadius(ratio) * plan.spacing;
+    plan.cellSize = options.cellSize > 0 ? options.cellSize : 0.5 * plan.spacing;
+    plan.iso = options.iso;
+    // Deep in the fluid the field is -r / d, beyond the kernel's reach (R - r) / d.
+    const double isoLow = -plan.particleRadius / plan.spacing;
+    const double isoHigh = (plan.kernelRadius - plan.particleRadius) / plan.spacing;
+    if (!(plan.iso > isoLow && plan.iso < isoHigh)) {
+        throw std::invalid_argument("iso-value is " + text(plan.iso) + ", must be in (" +
+                                    text(isoLow) + ", " + text(isoHigh) +
+                                    ") particle spacings (0 is the fluid surface)");
+    }
+
+    // Lattice over the particles plus the kernel radius and two cells, so that the surface never
+    // touches its faces and comes out closed.
+    const double margin = plan.kernelRadius + 2 * plan.cellSize;
+    plan.origin = plan.particleMin - Vec3d(margin, margin, margin);
+    double samples = 1;
+    for (int a = 0; a < 3; ++a) {
+        const double extent = plan.particleMax[a] - plan.particleMin[a] + 2 * margin;
+        const double count = std::ceil(extent / plan.cellSize) + 1;
+        samples *= count;
+        plan.dims[a] = int(std::min(count, 2e9));
+    }
+    const double limit = double(std::min<std::int64_t>(options.maxSamples, 1ll << 28));
+    if (samples > limit) {
+        std::ostringstream message;
+        message << "the surface lattice would need " << plan.dims[0] << " x " << plan.dims[1]
+                << " x " << plan.dims[2] << " = " << samples << " samples at cell size "
+                << plan.cellSize << " m (particles spanning " << text(plan.particleMax.x -
+                                                                        plan.particleMin.x)
+                << " x " << text(plan.particleMax.y - plan.particleMin.y) << " x "
+                << text(plan.particleMax.z - plan.particleMin.z) << " m), more than the limit of "
+                << std::int64_t(limit) << "; use a cell size of at least "
+                << plan.cellSize * std::cbrt(samples / limit) * 1.05 << " m";
+        throw SurfaceError(message.str());
+    }
+    plan.binSize = std::max(plan.kernelRadius / 2, plan.cellSize);
+    return plan;
+}
+
+TriangleMesh reconstructSurface(Backend backend, const HostParticles& particles,
+                                const SurfacePlan& plan) {
+    if (backend == Backend::Cuda) {
+#if defined(WEIR_HAS_CUDA)
+        return reconstructSurfaceCuda(particles, plan);
+#else
+        throw SurfaceError("this weir was built without CUDA; use the cpu backend");
+#endif
+    }
+    CpuExec exec;
+    return extractSurface(exec, particles, plan);
+}
+
+TriangleMesh reconstructSurface(Backend backend, const HostParticles& particles,
+                                const SurfaceOptions& options, SurfacePlan* planOut) {
+    const SurfacePlan plan = planSurface(particles, options);
+    if (planOut != nullptr) {
+        *planOut = plan;
+    }
+    return reconstructSurface(backend, particles, plan);
+}
+
+}  // namespace weir

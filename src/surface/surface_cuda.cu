@@ -1,0 +1,19 @@
+// Surface reconstruction instantiated on the CUDA backend: the same stages, one thread per
+// sample or cell.
+#include "core/exec_cuda.cuh"
+#include "surface/surface_pipeline.h"
+
+namespace weir {
+
+template TriangleMesh extractSurface<CudaExec>(CudaExec&, const HostParticles&,
+                                               const SurfacePlan&);
+
+TriangleMesh reconstructSurfaceCuda(const HostParticles& particles, const SurfacePlan& plan) {
+    if (!cudaDeviceAvailable()) {
+        throw SurfaceError("no CUDA device is visible; use the cpu backend");
+    }
+    CudaExec exec;
+    return extractSurface(exec, particles, plan);
+}
+
+}  // namespace weir

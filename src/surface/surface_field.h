@@ -1,0 +1,123 @@
+// The scalar field the surface is the iso-surface of: Zhu & Bridson's (2005) distance to the
+// kernel-weighted mean of nearby particle positions, sampled from particles sorted into bins.
+#pragma once
+
+#include <cmath>
+
+#include "core/config.h"
+#include "core/vec3.h"
+#include "grid/dense_grid.h"
+
+namespace weir {
+
+// floor() as an int without a library call.
+WEIR_HD inline int floorToInt(Real v) {
+    const int t = int(v);
+    return t - (v < Real(t) ? 1 : 0);
+}
+
+// Particles sorted by bin (grid/dense_grid.h), looked up around any point in space.
+struct ParticleBinsView {
+    const Index* cellBound;  // bins + 1 entries: particles of bin b are [cellBound[b], ...[b + 1])
+    const Real4* pos;        // positions in bin order
+    Vec3 origin;
+    Real binSize;
+    int nx, ny, nz;
+    int reach;  // bins per search radius, rounded up
+
+    // Calls f(j) for each particle j that can lie within sqrt(radius2) of p: rows of bins whose
+    // slab is out of reach are skipped and each row is cut to the chord of the sphere.
+    template <class F>
+    WEIR_HD void forEachNear(const Vec3& p, Real radius2, F&& f) const {
+        const Real invBin = Real(1) / binSize;
+        const Vec3 local = (p - origin) * invBin;
+        const int cy = floorToInt(local.y);
+        const int cz = floorToInt(local.z);
+        const int yLo = cy - reach < 0 ? 0 : cy - reach, yHi = cy + reach < ny ? cy + reach : ny - 1;
+        const int zLo = cz - reach < 0 ? 0 : cz - reach, zHi = cz + reach < nz ? cz + reach : nz - 1;
+        for (int y = yLo; y <= yHi; ++y) {
+            const Real dy = slabDistance(p.y, origin.y + Real(y) * binSize);
+            const Real remainderY = radius2 - dy * dy;
+            if (remainderY <= Real(0)) {
+                continue;
+            }
+            for (int z = zLo; z <= zHi; ++z) {
+                const Real dz = slabDistance(p.z, origin.z + Real(z) * binSize);
+                const Real remainder = remainderY - dz * dz;
+                if (remainder <= Real(0)) {
+                    continue;
+                }
+                const Real halfChord = std::sqrt(remainder);
+                int xLo = floorToInt((p.x - halfChord - origin.x) * invBin);
+                int xHi = floorToInt((p.x + halfChord - origin.x) * invBin);
+                xLo = xLo < 0 ? 0 : xLo;
+                xHi = xHi > nx - 1 ? nx - 1 : xHi;
+                if (xLo > xHi) {
+                    continue;
+                }
+                const CellKey row = denseCellIndex(0, y, z, nx, nz);
+                const Index end = cellBound[row + CellKey(xHi) + 1];
+                for (Index j = cellBound[row + CellKey(xLo)]; j < end; ++j) {
+                    f(j);
+                }
+            }
+        }
+    }
+
+    // Distance from coordinate v to the slab [lo, lo + binSize] (0 inside).
+    WEIR_HD Real slabDistance(Real v, Real lo) const {
+        const Real hi = lo + binSize;
+        return v < lo ? lo - v : (v > hi ? v - hi : Real(0));
+    }
+};
+
+// phi(x) = (|x - xbar(x)| - r) / d, with xbar the mean of the particle positions weighted by
+// k(s) = (1 - s^2)^3, s = |x - x_j| / R (R the kernel radius, r the particle radius, d the
+// particle spacing). Negative in the fluid, zero on its surface, positive outside; far from every
+// particle it is (R - r) / d, the value it tends to at the edge of the kernel's reach.
+struct ZhuBridsonField {
+    ParticleBinsView particles;
+    Real kernelRadius2;
+    Real inverseKernelRadius2;
+    Real particleRadius;
+    Real inverseSpacing;
+    Real farValue;
+
+    WEIR_HD float valueAt(const Vec3& x) const {
+        Real weightSum = 0;
+        Vec3 weightedOffset;  // sum of k_j (x_j - x): the mean taken relative to x keeps precision
+        particles.forEachNear(x, kernelRadius2, [&](Index j) {
+            const Vec3 offset = particles.pos[j].xyz() - x;
+            const Real r2 = lengthSquared(offset);
+            if (r2 < kernelRadius2) {
+                const Real s = Real(1) - r2 * inverseKernelRadius2;
+                const Real weight = s * s * s;
+                weightSum += weight;
+                weightedOffset += offset * weight;
+            }
+        });
+        if (!(weightSum > Real(0))) {
+            return float(farValue);
+        }
+        const Vec3 meanOffset = weightedOffset / weightSum;
+        return float((length(meanOffset) - particleRadius) * inverseSpacing);
+    }
+};
+
+// The particle radius r, in particle spacings, for which a flat surface of a cubic lattice lies
+// half a spacing beyond its outer layer (where the fluid's volume ends), for kernel radius
+// R = ratio * d. Seen from that height the layers are at distances a_k = (k + 1/2) d and a layer
+// weighs (1 - a_k^2 / R^2)^4 (the kernel integrated over the plane), so xbar lies at the
+// weighted mean of the a_k; r is that distance. About 0.545 for ratio 2.
+inline double zhuBridsonParticleRadius(double ratio) {
+    double weightSum = 0, distanceSum = 0;
+    for (int k = 0; k + 0.5 < ratio; ++k) {
+        const double a = (k + 0.5) / ratio;
+        const double weight = std::pow(1 - a * a, 4);
+        weightSum += weight;
+        distanceSum += weight * (k + 0.5);
+    }
+    return distanceSum / weightSum;
+}
+
+}  // namespace weir
