@@ -1,19 +1,24 @@
-// weir's fast cell table: the same sort by cell as paper §6.2, but a dense array over every grid
-// cell instead of a table of occupied cells and their 26 neighbours. cellBound[c] is the first
-// particle (in cell order) whose cell is >= c, built by scattering run ends and a max-scan, so a
-// row of three neighbour cells is the run [cellBound[first], cellBound[last + 1]): two loads per
-// row, no binary search and no per-cell neighbour table. Its cells are h/2 wide, so a particle
-// scans 25 rows of 5 cells, (2.5 h)^3 of space instead of the (3 h)^3 of 27 h-wide cells: 42%
-// fewer candidates for the same neighbours. Used when the grid has at most a few cells per
-// particle; it also lifts the 1024-cells-per-axis limit of the 32-bit id.
+// weir's fast cell table: particles grouped by cell as in paper §6.2, but with a dense array over
+// every grid cell instead of a table of occupied cells and their 26 neighbours. cellBound[c] is
+// the first particle (in cell order) whose cell is >= c, so a row of neighbour cells is the run
+// [cellBound[first], cellBound[last + 1]): two loads per row, no binary search and no per-cell
+// neighbour table. With cells h/2 wide a particle scans 25 rows of 5 cells, (2.5 h)^3 of space
+// instead of the (3 h)^3 of 27 h-wide cells: 42% fewer candidates for the same neighbours.
+//
+// The grouping is a counting sort rather than a radix sort: the cell count is known, so one pass
+// counts particles per cell (each particle taking a ticket), a prefix sum over the counts is the
+// cell table itself, and each particle's place follows from its cell's start. Tickets come from
+// atomics in whatever order threads run, so a second pass ranks the particles of a cell by their
+// current index: the order is that of a stable sort, the same on every run and every backend.
+// It also lifts the 1024-cells-per-axis limit of the 32-bit id (cells are linear indices).
 #pragma once
 
 #include <cmath>
 
+#include "core/atomics.h"
 #include "core/config.h"
 #include "core/vec3.h"
 #include "grid/cell_id.h"
-#include "grid/cell_sort.h"
 
 namespace weir {
 
@@ -23,43 +28,41 @@ WEIR_HD inline CellKey denseCellIndex(int x, int y, int z, int nx, int nz) {
 }
 
 struct DenseGridNeighbours {
-    const Index* cellBound;       // totalCells + 1 entries
-    const CellKey* particleCell;  // linear cell of each (sorted) particle
-    const Real4* pos;             // positions, in the same (sorted) order
-    Vec3 origin;
-    Real cellSize;
-    Real h2;  // squared smoothing radius
-    int nx, ny, nz;
-    int reach;  // cells per smoothing radius: rows span +-reach cells
+    const Index* cellBound;  // totalCells + 1 entries
+    const Real4* pos;        // positions, in cell order
+    GridSpec spec;           // the cells the particles were grouped by
+    Real h2;                 // squared smoothing radius
+    int reach;               // cells per smoothing radius: rows span +-reach cells
 
     // Calls f(j) for every particle j that can lie within h of particle i (i included): the
     // X runs of the 5 x 5 rows around i's cell, less the rows whose (Y, Z) slab is farther than
     // h (the 4 corner rows and more near slab edges). Cutting each run further to the sphere's
     // chord visits fewer candidates but measured slower (bench/NOTES.md: the branchy bounds cost
-    // more than the candidates they save), so runs stay whole.
+    // more than the candidates they save), so runs stay whole. Plain nested loops: the same walk
+    // written as a row iterator measured 16% slower on the GPU.
     template <class F>
     WEIR_HD void forEachCandidate(Index i, F&& f) const {
-        const CellKey cell = particleCell[i];
-        const int cx = int(cell % CellKey(nx));
-        const CellKey rest = cell / CellKey(nx);
-        const int cz = int(rest % CellKey(nz)), cy = int(rest / CellKey(nz));
         const Real4 p = pos[i];
-        const int yLo = cy >= reach ? cy - reach : 0, yHi = cy + reach < ny ? cy + reach : ny - 1;
-        const int zLo = cz >= reach ? cz - reach : 0, zHi = cz + reach < nz ? cz + reach : nz - 1;
+        // The same function of the same position as in the build: the cell it was grouped in.
+        const CellCoord c = spec.cellOf(p.x, p.y, p.z);
+        const int nx = spec.dims[0], ny = spec.dims[1], nz = spec.dims[2];
+        const int yLo = c.y >= reach ? c.y - reach : 0;
+        const int yHi = c.y + reach < ny ? c.y + reach : ny - 1;
+        const int zLo = c.z >= reach ? c.z - reach : 0;
+        const int zHi = c.z + reach < nz ? c.z + reach : nz - 1;
+        const int xLo = c.x >= reach ? c.x - reach : 0;
+        const int xHi = c.x + reach < nx ? c.x + reach : nx - 1;
         for (int y = yLo; y <= yHi; ++y) {
-            const Real dy = slabDistance(p.y, origin.y + Real(y) * cellSize);
+            const Real dy = slabDistance(p.y, spec.origin.y + Real(y) * spec.cellSize);
             const Real remY = h2 - dy * dy;
             if (remY <= Real(0)) {
                 continue;
             }
             for (int z = zLo; z <= zHi; ++z) {
-                const Real dz = slabDistance(p.z, origin.z + Real(z) * cellSize);
-                const Real rem = remY - dz * dz;
-                if (rem <= Real(0)) {
+                const Real dz = slabDistance(p.z, spec.origin.z + Real(z) * spec.cellSize);
+                if (remY - dz * dz <= Real(0)) {
                     continue;
                 }
-                const int xLo = cx >= reach ? cx - reach : 0;
-                const int xHi = cx + reach < nx ? cx + reach : nx - 1;
                 const CellKey row = denseCellIndex(0, y, z, nx, nz);
                 const Index end = cellBound[row + CellKey(xHi) + 1];
                 for (Index j = cellBound[row + CellKey(xLo)]; j < end; ++j) {
@@ -71,19 +74,36 @@ struct DenseGridNeighbours {
 
     // Distance from coordinate v to the slab [lo, lo + cellSize] (0 inside).
     WEIR_HD Real slabDistance(Real v, Real lo) const {
-        const Real hi = lo + cellSize;
+        const Real hi = lo + spec.cellSize;
         return v < lo ? lo - v : (v > hi ? v - hi : Real(0));
     }
 };
 
-constexpr int kDenseCellsPerRadius = 2;
+// Cells per smoothing radius of the dense table for a grid of h-wide cells and n particles: 2 (h/2
+// cells, the fastest) while that means at most 8 cells per particle (plus a floor for small runs),
+// else 1 (h cells: 8 times fewer, for huge sparse domains); 0 if even that needs 2^31 cells or
+// more, where the paper's sparse cell table must serve.
+inline int denseCellsPerRadius(const GridSpec& radiusGrid, std::int64_t n) {
+    const std::uint64_t cells = totalCells(radiusGrid);
+    const std::uint64_t limit = std::uint64_t(1) << 31;
+    if (cells * 8 < limit && cells * 8 <= std::uint64_t(8 * n + (1 << 20))) {
+        return 2;
+    }
+    return cells < limit ? 1 : 0;
+}
 
-// Whether the dense table suits a grid of h-wide cells for n particles: at most 8 of its h/2
-// cells per particle (plus a floor for small runs), and linear indices that fit in 31 bits.
+// Whether the dense table suits a grid of h-wide cells for n particles.
 inline bool denseGridSuits(const GridSpec& radiusGrid, std::int64_t n) {
-    const std::uint64_t cells =
-        totalCells(radiusGrid) * kDenseCellsPerRadius * kDenseCellsPerRadius * kDenseCellsPerRadius;
-    return cells < (std::uint64_t(1) << 31) && cells <= std::uint64_t(8 * n + (1 << 20));
+    return denseCellsPerRadius(radiusGrid, n) > 0;
+}
+
+// The grid of the dense table: the h-wide grid's box cut into cells of h / cellsPerRadius.
+inline GridSpec denseGridSpec(const GridSpec& radiusGrid, int cellsPerRadius) {
+    const Vec3d origin(radiusGrid.origin);
+    const Vec3d extent = Vec3d(radiusGrid.dims[0], radiusGrid.dims[1], radiusGrid.dims[2]) *
+                         double(radiusGrid.cellSize);
+    return makeGridSpec(origin, origin + extent, double(radiusGrid.cellSize) / cellsPerRadius,
+                        1 << 21);
 }
 
 template <class Exec>
@@ -92,59 +112,75 @@ class DenseGrid {
     template <class T>
     using Buffer = typename Exec::template Buffer<T>;
 
-    static constexpr int kCellsPerRadius = kDenseCellsPerRadius;
-
     // spec: cells of h / cellsPerRadius.
     DenseGrid(const GridSpec& spec, int cellsPerRadius) : spec_(spec), reach_(cellsPerRadius) {}
 
     void build(Exec& exec, const Real4* pos, Index n) {
-        sort_.prepare(n);
+        // The particle count does not change between steps, nor does the grid.
+        keys_.resize(std::size_t(n));
+        ticketOrPermutation_.resize(std::size_t(n));
+        slotParticle_.resize(std::size_t(n));
         const std::uint64_t cells = totalCells(spec_);
-        cellBound_.resize(std::size_t(cells + 1));  // the grid does not change size
+        cellBound_.resize(std::size_t(cells + 1));
         const GridSpec spec = spec_;
         const int nx = spec.dims[0], nz = spec.dims[2];
-        CellKey* keys = sort_.keys();
-        exec.forEach(n, [=] WEIR_HD(Index i) {
-            CellCoord c = spec.cellOf(pos[i].x, pos[i].y, pos[i].z);
-            keys[i] = denseCellIndex(c.x, c.y, c.z, nx, nz);
-        });
-        sort_.sort(exec, bitsFor(cells));
-        // cellBound[c + 1] = one past the last particle of cell c, where c is occupied; then a
-        // running max fills the empty cells with the bound of the last occupied one before them.
+        CellKey* keys = keys_.data();
+        Index* ticket = ticketOrPermutation_.data();
         Index* bound = cellBound_.data();
-        const CellKey* sorted = sort_.sortedKeys();
+        Index* slotParticle = slotParticle_.data();
+        // 1. Count: bound[c + 1] = particles in cell c; each particle's ticket is its arrival.
         exec.forEach(Index(cells + 1), [=] WEIR_HD(Index c) { bound[c] = 0; });
         exec.forEach(n, [=] WEIR_HD(Index i) {
-            if (i == n - 1 || sorted[i] != sorted[i + 1]) {
-                bound[sorted[i] + 1] = i + 1;
-            }
+            const CellCoord c = spec.cellOf(pos[i].x, pos[i].y, pos[i].z);
+            const CellKey key = denseCellIndex(c.x, c.y, c.z, nx, nz);
+            keys[i] = key;
+            ticket[i] = atomicFetchAdd(&bound[key + 1], Index(1));
         });
-        exec.inclusiveMaxScan(bound, Index(cells + 1));
+        // 2. The prefix sum of the counts: bound[c] = first particle of cell c.
+        exec.inclusiveScan(bound, bound, Index(cells + 1));
+        // 3. Place by ticket, then order each cell by current index (the order of a stable sort).
+        // A cell of more than kMaxRankedCell particles (a pile-up in a broken run) keeps its
+        // ticket order rather than cost a quadratic ranking.
+        exec.forEach(n, [=] WEIR_HD(Index i) { slotParticle[bound[keys[i]] + ticket[i]] = i; });
+        Index* permutation = ticket;  // tickets are spent
+        exec.forEach(n, [=] WEIR_HD(Index slot) {
+            const Index i = slotParticle[slot];
+            const CellKey key = keys[i];
+            const Index first = bound[key], end = bound[key + 1];
+            if (end - first > kMaxRankedCell) {
+                permutation[slot] = i;
+                return;
+            }
+            Index rank = 0;
+            for (Index s = first; s < end; ++s) {
+                rank += slotParticle[s] < i ? 1 : 0;
+            }
+            permutation[first + rank] = i;
+        });
     }
 
     // The neighbour view for positions `pos` in cell order and smoothing radius h.
     DenseGridNeighbours view(const Real4* pos, Real h) const {
-        return {cellBound_.data(),
-                sort_.sortedKeys(),
-                pos,
-                spec_.origin,
-                spec_.cellSize,
-                h * h,
-                spec_.dims[0],
-                spec_.dims[1],
-                spec_.dims[2],
-                reach_};
+        return {cellBound_.data(), pos, spec_, h * h, reach_};
     }
-    const Index* permutation() const { return sort_.permutation(); }
+    // permutation()[k] is the old index of the particle that is k-th in cell order.
+    const Index* permutation() const { return ticketOrPermutation_.data(); }
     const GridSpec& spec() const { return spec_; }
+    int cellsPerRadius() const { return reach_; }
     const Buffer<Index>& cellBound() const { return cellBound_; }
-    std::size_t bytesHeld() const { return sort_.bytesHeld() + cellBound_.size() * sizeof(Index); }
+    std::size_t bytesHeld() const {
+        return keys_.size() * sizeof(CellKey) +
+               (ticketOrPermutation_.size() + slotParticle_.size() + cellBound_.size()) *
+                   sizeof(Index);
+    }
 
    private:
+    static constexpr Index kMaxRankedCell = 256;
+
     GridSpec spec_;
     int reach_;
-    CellSort<Exec> sort_;
-    Buffer<Index> cellBound_;
+    Buffer<CellKey> keys_;
+    Buffer<Index> ticketOrPermutation_, slotParticle_, cellBound_;
 };
 
 }  // namespace weir

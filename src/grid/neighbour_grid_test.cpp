@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <set>
 
 #include "core/exec_cpu.h"
@@ -136,6 +137,18 @@ TEST_P(DenseGridVersusBrute, SameNeighboursAsBruteForce) {
         for (std::uint64_t c = 0; c < cells; ++c) {
             ASSERT_LE(bound[c], bound[c + 1]);
         }
+        // The counting sort gives the order of a stable sort by cell: cells non-decreasing, and
+        // within a cell the particles in their old order (the same on every run and backend).
+        const GridSpec& spec = grid.spec();
+        auto cellOf = [&](Index i) {
+            CellCoord c = spec.cellOf(pos[i].x, pos[i].y, pos[i].z);
+            return denseCellIndex(c.x, c.y, c.z, spec.dims[0], spec.dims[2]);
+        };
+        std::vector<Index> stable(n);
+        std::iota(stable.begin(), stable.end(), 0);
+        std::stable_sort(stable.begin(), stable.end(),
+                         [&](Index a, Index b) { return cellOf(a) < cellOf(b); });
+        ASSERT_EQ(std::vector<Index>(order, order + n), stable) << "reach " << reach;
         std::vector<Real4> sortedPos(n);
         for (Index i = 0; i < n; ++i) {
             sortedPos[i] = pos[order[i]];

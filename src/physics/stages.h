@@ -76,7 +76,7 @@ WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Nei
 // the force density on i, for r_vec = x_i - x_j and 0 < r < h.
 WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r, Real invR, Real pi,
                               Real pj, Real rhoj, const Vec3& vi, const Vec3& vj) {
-    const Real massOverRho = params.mass / rhoj;
+    const Real massOverRho = params.mass * reciprocal(rhoj);
     Real pressure =
         -massOverRho * Real(0.5) * (pi + pj) * spikyGradientFactor(params.kernel, r, invR);
     Real viscous = params.viscosity * massOverRho * viscosityLaplacian(params.kernel, r);

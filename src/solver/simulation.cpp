@@ -53,17 +53,24 @@ NeighbourMode resolveNeighbourMode(NeighbourMode mode, const GridSpec& grid, std
 }
 
 std::size_t bytesPerParticleEstimate(NeighbourMode mode) {
-    // Position, velocity, acceleration (padded vectors), density, pressure, id.
-    std::size_t bytes = 3 * sizeof(Real4) + 2 * sizeof(Real) + sizeof(Index);
-    if (mode != NeighbourMode::Brute) {
-        // Reorder scratch (position, velocity, id), keys and values twice (sort), 25% headroom.
-        bytes += 2 * sizeof(Real4) + sizeof(Index) + (4 * 4) * 5 / 4;
-    }
-    if (mode == NeighbourMode::Grid) {
-        // Cell of each particle; cell tables for up to one occupied cell per two particles.
-        bytes += sizeof(Index) * 5 / 4 + (3 * 4 + 27 * sizeof(Index)) * 5 / 8;
-    } else if (mode != NeighbourMode::Brute) {
-        bytes += 8 * sizeof(Index);  // dense bounds, at most 8 cells per particle
+    // Position and velocity (padded vectors, density in the velocity's fourth), id.
+    std::size_t bytes = 2 * sizeof(Real4) + sizeof(Index);
+    switch (mode) {
+        case NeighbourMode::Brute:
+            bytes += sizeof(Real4);  // acceleration
+            break;
+        case NeighbourMode::Grid:
+            // Acceleration; reorder scratch (position, velocity, id); keys and values twice for
+            // the sort and as much again of sort scratch; the cell of each particle; cell tables
+            // for up to one occupied cell per two particles.
+            bytes += 3 * sizeof(Real4) + sizeof(Index) + 2 * (2 * 4 + 2 * sizeof(Index)) +
+                     sizeof(Index) + (3 * 4 + 27 * sizeof(Index)) / 2;
+            break;
+        default:
+            // New state of the fused force pass (position, velocity), reorder scratch (id); key,
+            // ticket and slot of the counting sort; dense bounds, at most 8 cells per particle.
+            bytes += 2 * sizeof(Real4) + sizeof(Index) + sizeof(CellKey) + 2 * sizeof(Index) +
+                     8 * sizeof(Index);
     }
     return bytes;
 }

@@ -24,13 +24,7 @@ class SphSolver final : public Simulation {
         : mode_(mode),
           params_(setup.params),
           sparse_(mode == NeighbourMode::Grid ? setup.grid : GridSpec{}),
-          dense_(
-              makeGridSpec(Vec3d(setup.grid.origin),
-                           Vec3d(setup.grid.origin) +
-                               Vec3d(setup.grid.dims[0], setup.grid.dims[1], setup.grid.dims[2]) *
-                                   double(setup.grid.cellSize),
-                           double(setup.grid.cellSize) / kDenseCellsPerRadius, 1 << 21),
-              kDenseCellsPerRadius) {
+          dense_(denseGridSpec(setup.grid, denseReach(setup)), denseReach(setup)) {
         const HostParticles& host = setup.particles;
         n_ = Index(host.size());
         std::vector<Real4> pos(n_), vel(n_);
@@ -302,6 +296,12 @@ class SphSolver final : public Simulation {
     long long stepCount() const override { return steps_; }
 
    private:
+    // Cells per smoothing radius of the dense table (1 where even the grid of h cells is too big
+    // for it: the dense table is then unused).
+    static int denseReach(const SimulationSetup& setup) {
+        return std::max(1, denseCellsPerRadius(setup.grid, std::int64_t(setup.particles.size())));
+    }
+
     Exec exec_;
     NeighbourMode mode_;
     SphParams params_;
