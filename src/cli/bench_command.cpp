@@ -284,6 +284,14 @@ int benchCommand(const BenchOptions& options) {
                     std::sort(perStep.begin(), perStep.end());
                     result["stepMs"] = perStep[perStep.size() / 2];
                 }
+                // Throughput; on the CPU also per core, to show how the backend scales.
+                const double stepMs = result.value("stepMs", total);
+                result["particleStepsPerSecond"] = double(n) * 1000.0 / stepMs;
+                if (column.backend == Backend::Cpu) {
+                    result["threads"] = omp_get_max_threads();
+                    result["particleStepsPerSecondPerCore"] =
+                        result["particleStepsPerSecond"].get<double>() / omp_get_max_threads();
+                }
                 result["bytesPerParticle"] = double(sim->bytesHeld()) / double(n);
                 result["occupiedCells"] = sim->occupiedCells();
                 result["device"] = sim->deviceName();
@@ -300,7 +308,16 @@ int benchCommand(const BenchOptions& options) {
                               << " ms/step (full step, median)";
                 }
                 std::cerr << ", " << fixed(result["bytesPerParticle"].get<double>(), 1)
-                          << " bytes/particle\n";
+                          << " bytes/particle, "
+                          << fixed(result["particleStepsPerSecond"].get<double>() / 1e6, 2)
+                          << " M particle-steps/s";
+                if (result.contains("particleStepsPerSecondPerCore")) {
+                    std::cerr << " ("
+                              << fixed(result["particleStepsPerSecondPerCore"].get<double>() / 1e6,
+                                       3)
+                              << " M per core, " << result["threads"].get<int>() << " threads)";
+                }
+                std::cerr << "\n";
                 run["columns"][column.name] = result;
             }
             record["runs"].push_back(run);

@@ -115,17 +115,27 @@ class DenseGrid {
     // spec: cells of h / cellsPerRadius.
     DenseGrid(const GridSpec& spec, int cellsPerRadius) : spec_(spec), reach_(cellsPerRadius) {}
 
+    // Groups the particles at `pos` by cell; permutation() then gives the cell order.
     void build(Exec& exec, const Real4* pos, Index n) {
+        permutation_.resize(std::size_t(n));
+        Index* permutation = permutation_.data();
+        build(exec, pos, n, [=] WEIR_HD(Index from, Index to) { permutation[to] = from; });
+    }
+
+    // Groups the particles by cell and calls place(from, to) once per particle, with its index
+    // now and its index in cell order: the caller moves its data there in the same pass.
+    template <class Place>
+    void build(Exec& exec, const Real4* pos, Index n, Place place) {
         // The particle count does not change between steps, nor does the grid.
         keys_.resize(std::size_t(n));
-        ticketOrPermutation_.resize(std::size_t(n));
+        tickets_.resize(std::size_t(n));
         slotParticle_.resize(std::size_t(n));
         const std::uint64_t cells = totalCells(spec_);
         cellBound_.resize(std::size_t(cells + 1));
         const GridSpec spec = spec_;
         const int nx = spec.dims[0], nz = spec.dims[2];
         CellKey* keys = keys_.data();
-        Index* ticket = ticketOrPermutation_.data();
+        Index* ticket = tickets_.data();
         Index* bound = cellBound_.data();
         Index* slotParticle = slotParticle_.data();
         // 1. Count: bound[c + 1] = particles in cell c; each particle's ticket is its arrival.
@@ -142,20 +152,19 @@ class DenseGrid {
         // A cell of more than kMaxRankedCell particles (a pile-up in a broken run) keeps its
         // ticket order rather than cost a quadratic ranking.
         exec.forEach(n, [=] WEIR_HD(Index i) { slotParticle[bound[keys[i]] + ticket[i]] = i; });
-        Index* permutation = ticket;  // tickets are spent
         exec.forEach(n, [=] WEIR_HD(Index slot) {
             const Index i = slotParticle[slot];
             const CellKey key = keys[i];
             const Index first = bound[key], end = bound[key + 1];
             if (end - first > kMaxRankedCell) {
-                permutation[slot] = i;
+                place(i, slot);
                 return;
             }
             Index rank = 0;
             for (Index s = first; s < end; ++s) {
                 rank += slotParticle[s] < i ? 1 : 0;
             }
-            permutation[first + rank] = i;
+            place(i, first + rank);
         });
     }
 
@@ -163,14 +172,14 @@ class DenseGrid {
     DenseGridNeighbours view(const Real4* pos, Real h) const {
         return {cellBound_.data(), pos, spec_, h * h, reach_};
     }
-    // permutation()[k] is the old index of the particle that is k-th in cell order.
-    const Index* permutation() const { return ticketOrPermutation_.data(); }
+    // After build(exec, pos, n): the old index of the particle that is k-th in cell order.
+    const Index* permutation() const { return permutation_.data(); }
     const GridSpec& spec() const { return spec_; }
     int cellsPerRadius() const { return reach_; }
     const Buffer<Index>& cellBound() const { return cellBound_; }
     std::size_t bytesHeld() const {
         return keys_.size() * sizeof(CellKey) +
-               (ticketOrPermutation_.size() + slotParticle_.size() + cellBound_.size()) *
+               (tickets_.size() + slotParticle_.size() + permutation_.size() + cellBound_.size()) *
                    sizeof(Index);
     }
 
@@ -180,7 +189,7 @@ class DenseGrid {
     GridSpec spec_;
     int reach_;
     Buffer<CellKey> keys_;
-    Buffer<Index> ticketOrPermutation_, slotParticle_, cellBound_;
+    Buffer<Index> tickets_, slotParticle_, permutation_, cellBound_;
 };
 
 }  // namespace weir

@@ -166,15 +166,25 @@ class SphSolver final : public Simulation {
 
     void buildGrid() {
         exec_.stageBegin("grid");
-        const Index* order;
         if (mode_ == NeighbourMode::Grid) {
             sparse_.build(exec_, pos_.data(), n_);
-            order = sparse_.permutation();
+            reorderByCell(sparse_.permutation());
         } else {
-            dense_.build(exec_, pos_.data(), n_);
-            order = dense_.permutation();
+            // The counting sort places each particle's data as it finds its place: no separate
+            // reorder pass.
+            const Real4 *pos = pos_.data(), *vel = vel_.data();
+            const Index* id = id_.data();
+            Real4 *newPos = sortedPos_.data(), *newVel = sortedVel_.data();
+            Index* newId = sortedId_.data();
+            dense_.build(exec_, pos, n_, [=] WEIR_HD(Index from, Index to) {
+                newPos[to] = pos[from];
+                newVel[to] = vel[from];
+                newId[to] = id[from];
+            });
+            pos_.swap(sortedPos_);
+            vel_.swap(sortedVel_);
+            id_.swap(sortedId_);
         }
-        reorderByCell(order);
         exec_.stageEnd("grid");
     }
 
