@@ -17,8 +17,10 @@ def main(path):
           f"settled for {record['settleSeconds']} s.")
     for run in record["runs"]:
         cols = list(run["columns"])
-        print(f"\n**{run['particles']:,} particles** ({run['neighboursPerParticle']:.1f} neighbours "
-              f"per particle, h = {run['smoothingRatio']} d), ms per step:\n")
+        nb = run.get("neighboursPerParticle")
+        start = f"{nb:.1f} neighbours per particle" if nb is not None else "from the initial lattice"
+        print(f"\n**{run['particles']:,} particles** ({start}, h = {run['smoothingRatio']} d), "
+              f"ms per step:\n")
         print("| Operation | " + " | ".join(f"{run['columns'][c]['title']} (`{c}`)" for c in cols) + " |")
         print("|---|" + "---:|" * len(cols))
 

@@ -36,7 +36,7 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         const Backend backend = parseBackend(options.backend);
         const NeighbourMode mode = resolveNeighbourMode(parseNeighbourMode(options.neighbours),
                                                         setup.grid,
-                                                        std::int64_t(setup.particles.size()));
+                                                        setup.particleCount());
         const FrameFormat format = parseFrameFormat(options.format);
         const std::string outDir = options.outDir.empty() ? "out/" + scene.name : options.outDir;
         const std::int64_t frames =

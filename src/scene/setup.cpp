@@ -7,6 +7,7 @@
 
 #include "grid/cell_id.h"
 #include "physics/kernels.h"
+#include "scene/seeding.h"
 
 namespace weir {
 
@@ -14,77 +15,7 @@ namespace {
 
 constexpr std::int64_t kDefaultParticleCount = 20000;
 
-bool insideBox(const Vec3d& p, const Box& b) {
-    return p.x >= b.min.x && p.x < b.max.x && p.y >= b.min.y && p.y < b.max.y && p.z >= b.min.z &&
-           p.z < b.max.z;
-}
-bool insideSphere(const Vec3d& p, const SphereShape& s) {
-    return lengthSquared(p - s.center) < s.radius * s.radius;
-}
-bool insideObstacle(const Scene& scene, const Vec3d& p) {
-    for (const Box& b : scene.obstacleBoxes) {
-        if (insideBox(p, b)) {
-            return true;
-        }
-    }
-    for (const SphereShape& s : scene.obstacleSpheres) {
-        if (insideSphere(p, s)) {
-            return true;
-        }
-    }
-    return false;
-}
-
-// Visits lattice points of spacing d filling the fluid. Points in two shapes are visited once.
-template <class F>
-void forEachSeed(const Scene& scene, double d, F&& visit) {
-    auto lattice = [&](const Vec3d& lo, const Vec3d& hi, auto&& keep, const Vec3d& velocity,
-                       std::size_t shapeIndex) {
-        long nx = long(std::floor((hi.x - lo.x) / d + 1e-9));
-        long ny = long(std::floor((hi.y - lo.y) / d + 1e-9));
-        long nz = long(std::floor((hi.z - lo.z) / d + 1e-9));
-        for (long k = 0; k < nz; ++k) {
-            for (long j = 0; j < ny; ++j) {
-                for (long i = 0; i < nx; ++i) {
-                    Vec3d p(lo.x + (i + 0.5) * d, lo.y + (j + 0.5) * d, lo.z + (k + 0.5) * d);
-                    if (!keep(p) || insideObstacle(scene, p)) {
-                        continue;
-                    }
-                    bool earlier = false;  // already seeded by an earlier shape
-                    for (std::size_t b = 0; b < shapeIndex && b < scene.blocks.size(); ++b) {
-                        earlier = earlier || insideBox(p, scene.blocks[b].box);
-                    }
-                    for (std::size_t s = scene.blocks.size(); s < shapeIndex; ++s) {
-                        earlier = earlier ||
-                                  insideSphere(p, scene.spheres[s - scene.blocks.size()].sphere);
-                    }
-                    if (!earlier) {
-                        visit(p, velocity);
-                    }
-                }
-            }
-        }
-    };
-    for (std::size_t b = 0; b < scene.blocks.size(); ++b) {
-        const FluidBlock& block = scene.blocks[b];
-        lattice(
-            block.box.min, block.box.max, [](const Vec3d&) { return true; }, block.velocity, b);
-    }
-    for (std::size_t s = 0; s < scene.spheres.size(); ++s) {
-        const FluidSphere& sphere = scene.spheres[s];
-        Vec3d r(sphere.sphere.radius, sphere.sphere.radius, sphere.sphere.radius);
-        lattice(
-            sphere.sphere.center - r, sphere.sphere.center + r,
-            [&](const Vec3d& p) { return insideSphere(p, sphere.sphere); }, sphere.velocity,
-            scene.blocks.size() + s);
-    }
-}
-
-std::int64_t countSeeds(const Scene& scene, double d) {
-    std::int64_t count = 0;
-    forEachSeed(scene, d, [&](const Vec3d&, const Vec3d&) { ++count; });
-    return count;
-}
+std::int64_t countSeeds(const Scene& scene, double d) { return sceneSeeds(scene, d).count; }
 
 double fluidVolume(const Scene& scene) {
     double v = 0;
@@ -155,7 +86,8 @@ double latticeKernelSum(double ratio) { return latticeSum(ratio, -int(std::ceil(
 
 HostParticles seedParticles(const Scene& scene, double spacing) {
     HostParticles particles;
-    forEachSeed(scene, spacing, [&](const Vec3d& p, const Vec3d& v) { particles.push(p, v); });
+    forEachSeed(sceneSeeds(scene, spacing),
+                [&](const Vec3d& p, const Vec3d& v) { particles.push(p, v); });
     return particles;
 }
 
@@ -181,14 +113,19 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     }
     const double d = report.spacing;
     SimulationSetup setup;
-    setup.particles = seedParticles(scene, d);
-    if (setup.particles.size() == 0) {
+    setup.seeds = sceneSeeds(scene, d);
+    if (setup.seeds.count == 0) {
         throw SceneError(where + ": the fluid holds no particle at spacing " + fmt(d) +
                          " m; make the blocks or spheres larger or the spacing smaller");
     }
-    if (setup.particles.size() > std::size_t(2147483647)) {
-        throw SceneError(where + ": " + std::to_string(setup.particles.size()) +
+    if (setup.seeds.count > std::int64_t(2147483647)) {
+        throw SceneError(where + ": " + std::to_string(setup.seeds.count) +
                          " particles exceed the limit of 2147483647");
+    }
+    if (!options.seedOnDevice) {
+        forEachSeed(setup.seeds,
+                    [&](const Vec3d& p, const Vec3d& v) { setup.particles.push(p, v); });
+        setup.seeds = SceneSeeds{};
     }
 
     // Smoothing radius and mass (§5.2: mass from density, volume and count). The lattice sum
@@ -322,7 +259,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     for (const SphereShape& s : scene.obstacleSpheres) {
         setup.obstacleSpheres.push_back({Vec3(s.center), Real(s.radius)});
     }
-    say(std::to_string(setup.particles.size()) + " particles, grid " +
+    say(std::to_string(setup.particleCount()) + " particles, grid " +
         std::to_string(setup.grid.dims[0]) + " x " + std::to_string(setup.grid.dims[1]) + " x " +
         std::to_string(setup.grid.dims[2]) + " cells of " + fmt(h) + " m");
     if (out != nullptr) {

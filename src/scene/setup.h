@@ -14,6 +14,9 @@ namespace weir {
 
 struct SetupOptions {
     std::optional<std::int64_t> particleCount;  // overrides the scene's resolution
+    // Leave the particles to be seeded by the simulation on its own backend (on the GPU for a
+    // CUDA run): setup.seeds instead of setup.particles, for runs too large to seed on the host.
+    bool seedOnDevice = false;
 };
 
 // What was chosen and why, for logs, --explain and benchmarks.

@@ -93,9 +93,9 @@ void checkMemoryFits(Index count, NeighbourMode mode, std::size_t freeBytes,
 
 std::unique_ptr<Simulation> makeSimulation(Backend backend, NeighbourMode mode,
                                            SimulationSetup setup) {
-    mode = resolveNeighbourMode(mode, setup.grid, std::int64_t(setup.particles.size()));
+    mode = resolveNeighbourMode(mode, setup.grid, setup.particleCount());
     if (backend == Backend::Cpu) {
-        checkMemoryFits(Index(setup.particles.size()), mode, CpuExec().freeMemoryBytes(),
+        checkMemoryFits(Index(setup.particleCount()), mode, CpuExec().freeMemoryBytes(),
                         "host memory");
         return makeCpuSimulation(mode, std::move(setup));
     }

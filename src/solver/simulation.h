@@ -11,6 +11,7 @@
 #include "grid/cell_id.h"
 #include "physics/sph_params.h"
 #include "physics/stages.h"
+#include "scene/seeding.h"
 #include "solver/particles.h"
 
 namespace weir {
@@ -32,6 +33,11 @@ struct SimulationSetup {
     std::vector<ObstacleBox> obstacleBoxes;
     std::vector<ObstacleSphere> obstacleSpheres;
     HostParticles particles;
+    SceneSeeds seeds;  // instead of particles: seeded by the simulation itself (scene/seeding.h)
+
+    std::int64_t particleCount() const {
+        return particles.size() > 0 ? std::int64_t(particles.size()) : seeds.count;
+    }
 };
 
 // A diagnosis of a blown-up state, made from the first fault recorded on the device.

@@ -129,5 +129,10 @@ TEST(CudaSolver, ConservesMomentum) {
     EXPECT_LT(length(p1 - p0), 1e-4 * scale);
 }
 
+TEST(CudaSolver, SeedsOnTheGpuAsTheHostDoes) {
+    SKIP_WITHOUT_GPU();
+    expectBackendSeedingMatchesTheHost(Backend::Cuda);
+}
+
 }  // namespace
 }  // namespace weir

@@ -23,6 +23,46 @@ inline Scene smallDamBreak(int particles = 2000) {
                       "<test small_dam_break>");
 }
 
+// Blocks that overlap, a sphere across a block's corner, obstacles in the fluid and fluid moving:
+// every rule of the seeding at work.
+inline Scene seedingScene() {
+    return parseScene(R"({
+        "container": {"min": [0, 0, 0], "max": [0.4, 0.3, 0.3]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.1, 0.1, 0.1], "velocity": [1, 0, 0]},
+                   {"min": [0.053, 0, 0], "max": [0.153, 0.1, 0.1]}],
+        "spheres": [{"center": [0.1, 0.1, 0.1], "radius": 0.047, "velocity": [0, -1, 0]}],
+        "obstacles": {"boxes": [{"min": [0.02, 0.02, 0.02], "max": [0.04, 0.05, 0.06]}],
+                      "spheres": [{"center": [0.12, 0.05, 0.05], "radius": 0.02}]},
+        "particles": {"spacing": 0.01}
+    })",
+                      "<test seeding>");
+}
+
+// The simulation seeds its particles on its backend exactly as the host would: same count,
+// order, positions and velocities.
+inline void expectBackendSeedingMatchesTheHost(Backend backend) {
+    for (const Scene& scene : {seedingScene(), builtinScene("drop_into_pool")}) {
+        SetupOptions onBackend;
+        onBackend.seedOnDevice = true;
+        SimulationSetup seeded = buildSetup(scene, onBackend, nullptr);
+        SimulationSetup hosted = buildSetup(scene, {}, nullptr);
+        ASSERT_EQ(seeded.particles.size(), 0u);
+        ASSERT_EQ(seeded.particleCount(), std::int64_t(hosted.particles.size()));
+        auto sim = makeSimulation(backend, NeighbourMode::Auto, std::move(seeded));
+        HostParticles out;
+        sim->download(out);
+        const HostParticles& want = hosted.particles;
+        ASSERT_EQ(out.size(), want.size()) << scene.name;
+        for (std::size_t i = 0; i < want.size(); ++i) {
+            ASSERT_EQ(out.x[i], want.x[i]) << scene.name << " particle " << i;
+            ASSERT_EQ(out.y[i], want.y[i]) << scene.name << " particle " << i;
+            ASSERT_EQ(out.z[i], want.z[i]) << scene.name << " particle " << i;
+            ASSERT_EQ(out.vx[i], want.vx[i]) << scene.name << " particle " << i;
+            ASSERT_EQ(out.vy[i], want.vy[i]) << scene.name << " particle " << i;
+        }
+    }
+}
+
 inline std::unique_ptr<Simulation> start(const Scene& scene, Backend backend, NeighbourMode mode,
                                          SetupReport* report = nullptr) {
     return makeSimulation(backend, mode, buildSetup(scene, {}, report));

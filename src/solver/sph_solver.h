@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cstdlib>
 #include <numeric>
+#include <string>
 #include <utility>
 
+#include "core/check.h"
 #include "grid/dense_grid.h"
 #include "grid/neighbour_grid.h"
 #include "physics/stages.h"
@@ -25,18 +27,22 @@ class SphSolver final : public Simulation {
           params_(setup.params),
           sparse_(mode == NeighbourMode::Grid ? setup.grid : GridSpec{}),
           dense_(denseGridSpec(setup.grid, denseReach(setup)), denseReach(setup)) {
-        const HostParticles& host = setup.particles;
-        n_ = Index(host.size());
-        std::vector<Real4> pos(n_), vel(n_);
-        std::vector<Index> ids(n_);
-        for (Index i = 0; i < n_; ++i) {
-            pos[i] = {host.x[i], host.y[i], host.z[i], 0};
-            vel[i] = {host.vx[i], host.vy[i], host.vz[i], 0};
-            ids[i] = i;
+        if (setup.particles.size() == 0 && !setup.seeds.empty()) {
+            seed(setup.seeds);
+        } else {
+            const HostParticles& host = setup.particles;
+            n_ = Index(host.size());
+            std::vector<Real4> pos(n_), vel(n_);
+            std::vector<Index> ids(n_);
+            for (Index i = 0; i < n_; ++i) {
+                pos[i] = {host.x[i], host.y[i], host.z[i], 0};
+                vel[i] = {host.vx[i], host.vy[i], host.vz[i], 0};
+                ids[i] = i;
+            }
+            exec_.upload(pos_, pos.data(), n_);
+            exec_.upload(vel_, vel.data(), n_);
+            exec_.upload(id_, ids.data(), n_);
         }
-        exec_.upload(pos_, pos.data(), n_);
-        exec_.upload(vel_, vel.data(), n_);
-        exec_.upload(id_, ids.data(), n_);
         if (mode_ != NeighbourMode::Dense) {
             acc_.resize(n_);  // the dense path fuses force and displacement
         }
@@ -305,11 +311,65 @@ class SphSolver final : public Simulation {
     Index particleCount() const override { return n_; }
     long long stepCount() const override { return steps_; }
 
+    // Creates the particles of `seeds` on this backend, in the order of the host's seeding: per
+    // lattice, in chunks, a keep flag per point, a prefix sum of the flags, and each kept point
+    // written at its place. (Public only because CUDA lambdas need a public enclosing function.)
+    void seed(const SceneSeeds& seeds) {
+        n_ = Index(seeds.count);
+        pos_.resize(std::size_t(n_));
+        vel_.resize(std::size_t(n_));
+        id_.resize(std::size_t(n_));
+        Buffer<Box> fluidBoxes, obstacleBoxes;
+        Buffer<SphereShape> fluidSpheres, obstacleSpheres;
+        exec_.upload(fluidBoxes, seeds.fluidBoxes.data(), seeds.fluidBoxes.size());
+        exec_.upload(obstacleBoxes, seeds.obstacleBoxes.data(), seeds.obstacleBoxes.size());
+        exec_.upload(fluidSpheres, seeds.fluidSpheres.data(), seeds.fluidSpheres.size());
+        exec_.upload(obstacleSpheres, seeds.obstacleSpheres.data(), seeds.obstacleSpheres.size());
+        const SeedShapes shapes{fluidBoxes.data(),      int(fluidBoxes.size()),
+                                fluidSpheres.data(),    int(fluidSpheres.size()),
+                                obstacleBoxes.data(),   int(obstacleBoxes.size()),
+                                obstacleSpheres.data(), int(obstacleSpheres.size())};
+        constexpr std::int64_t kChunk = std::int64_t(1) << 26;
+        Buffer<Index> kept;
+        Index placed = 0;
+        Real4 *pos = pos_.data(), *vel = vel_.data();
+        Index* id = id_.data();
+        for (const SeedLattice& lattice : seeds.lattices) {
+            for (std::int64_t start = 0; start < lattice.points(); start += kChunk) {
+                const Index count = Index(std::min(kChunk, lattice.points() - start));
+                kept.resize(std::size_t(std::min(kChunk, lattice.points())));
+                Index* flag = kept.data();
+                exec_.forEach(count, [=] WEIR_HD(Index k) {
+                    flag[k] = keepSeed(shapes, lattice, lattice.point(start + k)) ? 1 : 0;
+                });
+                exec_.inclusiveScan(flag, flag, count);
+                const Index base = placed;
+                const Index limit = n_;
+                exec_.forEach(count, [=] WEIR_HD(Index k) {
+                    const Index before = k > 0 ? flag[k - 1] : 0;
+                    const Index at = base + before;
+                    if (flag[k] > before && at < limit) {
+                        const Vec3d p = lattice.point(start + k);
+                        pos[at] = {Real(p.x), Real(p.y), Real(p.z), 0};
+                        vel[at] = {Real(lattice.velocity.x), Real(lattice.velocity.y),
+                                   Real(lattice.velocity.z), 0};
+                        id[at] = at;
+                    }
+                });
+                placed += exec_.readOne(kept, std::size_t(count - 1));
+            }
+        }
+        if (placed != n_) {
+            throw SimulationError("seeding placed " + std::to_string(placed) +
+                                  " particles where the host counted " + std::to_string(n_));
+        }
+    }
+
    private:
     // Cells per smoothing radius of the dense table (1 where even the grid of h cells is too big
     // for it: the dense table is then unused).
     static int denseReach(const SimulationSetup& setup) {
-        return std::max(1, denseCellsPerRadius(setup.grid, std::int64_t(setup.particles.size())));
+        return std::max(1, denseCellsPerRadius(setup.grid, setup.particleCount()));
     }
 
     Exec exec_;

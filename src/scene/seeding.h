@@ -1,0 +1,118 @@
+// Where the initial particles go: each fluid block or sphere filled with a cubic lattice, less the
+// points inside obstacles or inside an earlier shape. The rule is written once, for the host and
+// the device, so a run of a billion particles can be seeded on the GPU itself, in the same order
+// as on the host.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/config.h"
+#include "core/vec3.h"
+#include "scene/scene.h"
+
+namespace weir {
+
+WEIR_HD inline bool insideBox(const Vec3d& p, const Box& b) {
+    return p.x >= b.min.x && p.x < b.max.x && p.y >= b.min.y && p.y < b.max.y && p.z >= b.min.z &&
+           p.z < b.max.z;
+}
+WEIR_HD inline bool insideSphere(const Vec3d& p, const SphereShape& s) {
+    return lengthSquared(p - s.center) < s.radius * s.radius;
+}
+
+// The scene's shapes as plain arrays (host or device memory). Fluid shapes are numbered blocks
+// first, then spheres.
+struct SeedShapes {
+    const Box* fluidBoxes = nullptr;
+    int fluidBoxCount = 0;
+    const SphereShape* fluidSpheres = nullptr;
+    int fluidSphereCount = 0;
+    const Box* obstacleBoxes = nullptr;
+    int obstacleBoxCount = 0;
+    const SphereShape* obstacleSpheres = nullptr;
+    int obstacleSphereCount = 0;
+};
+
+// The lattice over one fluid shape's bounding box: points lo + (i + 1/2, j + 1/2, k + 1/2) d,
+// numbered i fastest, then j, then k.
+struct SeedLattice {
+    Vec3d lo;
+    double spacing = 0;
+    std::int64_t nx = 0, ny = 0, nz = 0;
+    int shape = 0;  // fluid shape number
+    Vec3d velocity;
+
+    WEIR_HD std::int64_t points() const { return nx * ny * nz; }
+    WEIR_HD Vec3d point(std::int64_t index) const {
+        const std::int64_t i = index % nx, rest = index / nx;
+        const std::int64_t j = rest % ny, k = rest / ny;
+        return {lo.x + (double(i) + 0.5) * spacing, lo.y + (double(j) + 0.5) * spacing,
+                lo.z + (double(k) + 0.5) * spacing};
+    }
+};
+
+// Whether lattice point p of `lattice` becomes a particle: inside its shape, outside every
+// obstacle, and not already taken by an earlier shape.
+WEIR_HD inline bool keepSeed(const SeedShapes& shapes, const SeedLattice& lattice, const Vec3d& p) {
+    const int sphere = lattice.shape - shapes.fluidBoxCount;  // >= 0 for a fluid sphere
+    if (sphere >= 0 && !insideSphere(p, shapes.fluidSpheres[sphere])) {
+        return false;
+    }
+    for (int b = 0; b < shapes.obstacleBoxCount; ++b) {
+        if (insideBox(p, shapes.obstacleBoxes[b])) {
+            return false;
+        }
+    }
+    for (int s = 0; s < shapes.obstacleSphereCount; ++s) {
+        if (insideSphere(p, shapes.obstacleSpheres[s])) {
+            return false;
+        }
+    }
+    const int earlierBoxes =
+        lattice.shape < shapes.fluidBoxCount ? lattice.shape : shapes.fluidBoxCount;
+    for (int b = 0; b < earlierBoxes; ++b) {
+        if (insideBox(p, shapes.fluidBoxes[b])) {
+            return false;
+        }
+    }
+    for (int s = 0; s < sphere; ++s) {
+        if (insideSphere(p, shapes.fluidSpheres[s])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// A scene's seeding at one spacing, on the host: its shapes and one lattice per fluid shape.
+struct SceneSeeds {
+    std::vector<Box> fluidBoxes, obstacleBoxes;
+    std::vector<SphereShape> fluidSpheres, obstacleSpheres;
+    std::vector<SeedLattice> lattices;
+    std::int64_t count = 0;  // particles the lattices keep
+
+    bool empty() const { return lattices.empty(); }
+    // The shapes, in this object's host memory.
+    SeedShapes shapes() const;
+};
+
+// The seeding of `scene` at spacing d, with its particle count (counted in parallel; in closed
+// form for a block that no obstacle or earlier shape touches).
+SceneSeeds sceneSeeds(const Scene& scene, double spacing);
+
+// Calls visit(position, velocity) for every kept lattice point, in order: shape by shape, each
+// lattice in its own order.
+template <class F>
+void forEachSeed(const SceneSeeds& seeds, F&& visit) {
+    const SeedShapes shapes = seeds.shapes();
+    for (const SeedLattice& lattice : seeds.lattices) {
+        for (std::int64_t k = 0; k < lattice.points(); ++k) {
+            const Vec3d p = lattice.point(k);
+            if (keepSeed(shapes, lattice, p)) {
+                visit(p, lattice.velocity);
+            }
+        }
+    }
+}
+
+}  // namespace weir
