@@ -54,6 +54,7 @@ struct RenderOptions {
     std::string video;             // an .mp4 made from the images with ffmpeg; empty: none
     bool surface = false;          // draw the marching-cubes surface instead of particles
     std::string backend = "auto";  // where the surface is reconstructed
+    double spacing = 0;            // particle spacing [m]; 0: from the scene or the first frame
     int samples = 4;
     bool quiet = false;
 };

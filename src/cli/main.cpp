@@ -139,6 +139,9 @@ int main(int argc, char** argv) {
                      "Where --surface is reconstructed: auto, cuda or cpu")
         ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
         ->capture_default_str();
+    renderCmd->add_option("--spacing", render.spacing,
+                          "Particle spacing in metres: sets the sphere size and the surface's "
+                          "scale (default: from --scene, else measured on the first frame)");
     renderCmd->add_option("--video", render.video,
                           "Also encode the images into this .mp4 with ffmpeg (H.264)");
     renderCmd->add_flag("--quiet,-q", render.quiet, "No progress line");

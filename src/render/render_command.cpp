@@ -249,6 +249,35 @@ class RunRenderer : public RunObserver {
     std::string imagesDir_;
 };
 
+// The lattice spacing the frames were seeded at: --spacing; else, with a scene, the spacing at
+// which the scene seeds exactly the frames' particle count (its own resolution, or the count as
+// `weir run --particles` gives it); else the median nearest-neighbour distance in the first frame
+// (right for frame 0, a little short for a moving fluid).
+double particleSpacing(const RenderOptions& options, const std::optional<Scene>& scene,
+                       const HostParticles& first) {
+    if (options.spacing > 0) {
+        return options.spacing;
+    }
+    if (scene) {
+        for (bool byCount : {false, true}) {
+            SetupOptions setupOptions;
+            if (byCount) {
+                setupOptions.particleCount = std::int64_t(first.size());
+            }
+            SetupReport report;
+            try {
+                const SimulationSetup setup = buildSetup(*scene, setupOptions, &report);
+                if (setup.particles.size() == first.size()) {
+                    return report.spacing;
+                }
+            } catch (const std::exception&) {
+                // not this resolution
+            }
+        }
+    }
+    return 2 * estimateParticleRadius(first);
+}
+
 int reportError(const std::exception& e, int code) {
     std::cerr << "weir: error: " << e.what() << "\n";
     return code;
@@ -263,6 +292,10 @@ std::unique_ptr<RunObserver> makeRunRenderer(const RenderOptions& options) {
 int renderCommand(const RenderOptions& options) {
     try {
         checkRenderOptions(options);
+        if (!(options.spacing >= 0) || !std::isfinite(options.spacing)) {
+            throw std::invalid_argument("--spacing " + std::to_string(options.spacing) +
+                                        " must be a length in metres > 0 (0: automatic)");
+        }
         const ColourField field = parseColourField(options.color);
         if (!options.video.empty()) {
             if (fs::path(options.video).extension() != ".mp4") {
@@ -287,7 +320,7 @@ int renderCommand(const RenderOptions& options) {
         // box the camera frames.
         const auto start = Clock::now();
         const HostParticles first = readFrameFile(frames.front().path);
-        const double radius = estimateParticleRadius(first);
+        const double radius = 0.5 * particleSpacing(options, scene, first);
         ValueRange range = robustRange(fieldValues(first, field), field);
         Box bounds{{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
         bounds = particleBounds(first, bounds, radius);
@@ -322,7 +355,8 @@ int renderCommand(const RenderOptions& options) {
                 std::cerr << colourFieldName(field) << " " << range.lo << ".." << range.hi << " "
                           << colourFieldUnit(field);
             }
-            std::cerr << "; " << imager.contextDescription() << ")\n";
+            std::cerr << ", particle spacing " << 2 * radius << " m; "
+                      << imager.contextDescription() << ")\n";
         }
         ItemProgress progress("render", frames.size(), options.quiet);
         for (std::size_t i = 0; i < frames.size(); ++i) {

@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,7 @@ namespace weir {
 namespace {
 
 using namespace cli_testing;
+using Json = nlohmann::json;
 
 // A 6 x 6 x 4 block of particles at 2 cm in a 30 x 20 x 8 cm box: 144 particles.
 constexpr const char* kTinyScene = R"({
@@ -222,6 +225,48 @@ TEST_F(RenderCli, RenderSurfaceDrawsWaterOverTheFluid) {
     // The far end of the container holds no fluid: background there (off the container edges).
     const PixelPoint empty = projectToPixel(camera, Vec3d(0.25, 0.1, 0.04), kWidth, kHeight);
     EXPECT_LE(difference(image.pixel(int(empty.x), int(empty.y)), kBackground), 1);
+}
+
+TEST_F(RenderCli, ParticleSpacingComesFromTheSceneForAnyFirstFrame) {
+    writeFile("tiny.json", kTinyScene);
+    ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 8 --out frames").exitCode, 0);
+    // Keep only the last frame in the index: the fluid has moved, its particles no longer sit on
+    // the 2 cm lattice.
+    Json index = Json::parse(fileText(dir_ / "frames" / "frames.json"));
+    index["frames"] = Json::array({index["frames"].back()});
+    writeFile("frames/frames.json", index.dump());
+    const RunResult withScene =
+        weir("render frames --width 64 --height 48 --samples 1 --scene tiny.json");
+    ASSERT_EQ(withScene.exitCode, 0) << withScene.output;
+    EXPECT_TRUE(contains(withScene.output, "particle spacing 0.02 m"));
+    const RunResult given =
+        weir("render frames --width 64 --height 48 --samples 1 --spacing 0.025");
+    ASSERT_EQ(given.exitCode, 0) << given.output;
+    EXPECT_TRUE(contains(given.output, "particle spacing 0.025 m"));
+}
+
+TEST_F(RenderCli, VideoIsEncodedWithFfmpeg) {
+    if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
+        GTEST_SKIP() << "ffmpeg is not installed (Debian: apt-get install ffmpeg)";
+    }
+    writeFile("tiny.json", kTinyScene);
+    ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 4 --out frames").exitCode, 0);
+    const RunResult render =
+        weir("render frames --width 160 --height 100 --samples 1 --quiet --video films/tiny.mp4");
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    EXPECT_TRUE(contains(render.output, "video films/tiny.mp4 (H.264, 30 frames/s)"));
+    // An MP4 (an 'ftyp' box first) and nothing else in its directory: the temporary is renamed.
+    EXPECT_EQ(entries(dir_ / "films"), std::vector<std::string>{"tiny.mp4"});
+    const std::string video = fileText(dir_ / "films" / "tiny.mp4");
+    ASSERT_GT(video.size(), 1000u);
+    EXPECT_EQ(video.substr(4, 4), "ftyp");
+    // ffmpeg reads it back as 5 frames of 160 x 100.
+    const RunResult probe = shell(
+        "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+        "stream=width,height,nb_read_frames -of csv=p=0 films/tiny.mp4");
+    if (probe.exitCode == 0) {
+        EXPECT_TRUE(contains(probe.output, "160,100,5")) << probe.output;
+    }
 }
 
 TEST_F(RenderCli, BadInputIsRefusedWithTheValue) {

@@ -16,6 +16,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include "render/particle_interop.h"
 #include "render/png_image.h"
 #include "render/render_commands.h"
 #include "render/renderer.h"
@@ -126,6 +127,7 @@ class Viewer {
     }
 
     void close() {
+        interop_.reset();
         renderer_.reset();
         if (window_ != nullptr) {
             glfwDestroyWindow(window_);
@@ -142,12 +144,15 @@ class Viewer {
         const NeighbourMode mode =
             resolveNeighbourMode(parseNeighbourMode(options_.neighbours), setup.grid,
                                  std::int64_t(setup.particles.size()));
+        interop_.reset();
         sim_.reset();
         sim_ = makeSimulation(backend_, mode, std::move(setup));
         sim_->computeDensity();
         stepsPerDraw_ = 1;
         stepWindow_.clear();
         status_.clear();
+        interop_.reset();  // before the solver whose arrays it reads goes
+        interop_ = makeParticleInterop(*sim_, &interopWhy_);
         applyColourRange();
         upload();
     }
@@ -156,7 +161,9 @@ class Viewer {
         const std::vector<int> pressed = parseKeys(options_.press);
         std::cerr << "weir: viewing " << scene_.name << ": " << sim_->particleCount()
                   << " particles on " << backendName(backend_) << " (" << sim_->deviceName()
-                  << "), drawn by " << glRenderer_ << ", particles by host copy\n"
+                  << "), drawn by " << glRenderer_ << ", particles by "
+                  << (interop_ ? interop_->description() : "host copy (" + interopWhy_ + ")")
+                  << "\n"
                   << "weir: keys: space pause, s step, r reset, c colour, m particles/surface, "
                      "f frame, q quit; mouse: left orbit, right pan, wheel zoom\n";
         const auto start = Clock::now();
@@ -244,8 +251,12 @@ class Viewer {
     // The particles (and the surface in surface mode) to the renderer.
     void upload() {
         const auto t0 = Clock::now();
-        sim_->download(host_);
-        renderer_->setParticles(host_, field_, 0.5 * report_.spacing);
+        if (interop_ && mode_ == RenderMode::Particles) {
+            interop_->update(*renderer_, field_, 0.5 * report_.spacing);
+        } else {
+            sim_->download(host_);
+            renderer_->setParticles(host_, field_, 0.5 * report_.spacing);
+        }
         uploadMs_ = 1000 * secondsSince(t0);
         if (mode_ == RenderMode::Surface) {
             const auto m0 = Clock::now();
@@ -423,6 +434,8 @@ class Viewer {
     GLFWwindow* window_ = nullptr;
     std::unique_ptr<Renderer> renderer_;
     std::unique_ptr<Simulation> sim_;
+    std::unique_ptr<ParticleInterop> interop_;  // null: particles copied through the host
+    std::string interopWhy_;                    // why there is no interop
     SetupReport report_;
     HostParticles host_;
     OrbitCamera camera_;
