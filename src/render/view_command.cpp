@@ -144,14 +144,14 @@ class Viewer {
         const NeighbourMode mode =
             resolveNeighbourMode(parseNeighbourMode(options_.neighbours), setup.grid,
                                  std::int64_t(setup.particles.size()));
-        interop_.reset();
+        interop_.reset();  // before the solver whose arrays it reads
         sim_.reset();
         sim_ = makeSimulation(backend_, mode, std::move(setup));
         sim_->computeDensity();
         stepsPerDraw_ = 1;
         stepWindow_.clear();
         status_.clear();
-        interop_.reset();  // before the solver whose arrays it reads goes
+        blewUp_ = false;
         interop_ = makeParticleInterop(*sim_, &interopWhy_);
         applyColourRange();
         upload();
@@ -176,6 +176,10 @@ class Viewer {
             }
             draw();
             glfwSwapBuffers(window_);
+            frameTimes_.push_back(Clock::now());
+            while (frameTimes_.size() > 31) {
+                frameTimes_.pop_front();
+            }
             glfwPollEvents();
             ++drawn_;
             if (options_.maxFrames > 0 && drawn_ >= options_.maxFrames) {
@@ -205,8 +209,8 @@ class Viewer {
 
     // Advances `steps` steps, the last one timed per stage; stops at a fault.
     void simulate(int steps) {
-        if (!status_.empty()) {
-            return;  // blew up: only R brings it back
+        if (blewUp_) {
+            return;  // only R brings it back
         }
         const auto t0 = Clock::now();
         if (steps > 1) {
@@ -241,6 +245,7 @@ class Viewer {
         }
         const FaultRecord fault = sim_->fault();
         if (fault.code != 0) {
+            blewUp_ = true;
             status_ = "BLEW UP (r resets): " + describeFault(fault, sim_->params());
             std::cerr << "weir: " << status_ << "\n";
             paused_ = true;
@@ -281,8 +286,19 @@ class Viewer {
         }
         std::string line = std::to_string(sim_->particleCount()) + " particles  " +
                            fixed(seconds > 0 ? steps / seconds : 0, 0) + " steps/s  t " +
-                           fixed(sim_->time(), 3) + " s" + (paused_ ? "  PAUSED" : "");
+                           fixed(sim_->time(), 3) + " s  " + fixed(framesPerSecond(), 1) +
+                           " frames/s" + (paused_ ? "  PAUSED" : "");
         return line;
+    }
+
+    // Over the last 30 frames drawn.
+    double framesPerSecond() const {
+        if (frameTimes_.size() < 2) {
+            return 0;
+        }
+        const double seconds =
+            std::chrono::duration<double>(frameTimes_.back() - frameTimes_.front()).count();
+        return seconds > 0 ? double(frameTimes_.size() - 1) / seconds : 0;
     }
 
     std::string stagesLine() const {
@@ -444,9 +460,11 @@ class Viewer {
     int stepsPerDraw_ = 1;
     Clock::time_point lastDraw_{};
     std::deque<std::pair<int, double>> stepWindow_;  // (steps, seconds) of recent draws
+    std::deque<Clock::time_point> frameTimes_;       // when recent frames were shown
     std::map<std::string, double> stageMs_;
     double uploadMs_ = 0, meshMs_ = 0;
-    std::string status_;
+    std::string status_;  // a line of warning under the statistics
+    bool blewUp_ = false;
     std::int64_t drawn_ = 0;
     int dragButton_ = -1;
     double lastX_ = 0, lastY_ = 0;
