@@ -32,8 +32,7 @@ void addImageOptions(CLI::App* cmd, weir::RenderOptions& o) {
                     "Camera as yaw,pitch,distance (degrees, degrees, metres); default: framed "
                     "on the container, yaw 25, pitch 20");
     cmd->add_option("--target", o.target,
-                    "Point the camera looks at, x,y,z (default: the "
-                    "container's centre)");
+                    "Point the camera looks at, x,y,z (default: the container's centre)");
     cmd->add_option("--samples", o.samples, "Multisampling per pixel (1 = off)")
         ->check(CLI::Range(1, 16))
         ->capture_default_str();
