@@ -189,7 +189,7 @@ class Viewer {
         const double seconds = secondsSince(start);
         std::cerr << "weir: view closed after " << drawn_ << " frames in " << fixed(seconds, 1)
                   << " s (" << fixed(seconds > 0 ? double(drawn_) / seconds : 0, 1)
-                  << " frames/s); last line: " << statsLine() << "\n";
+                  << " frames/s); last lines: " << statsLine() << "; " << stagesLine() << "\n";
     }
 
    private:

@@ -52,6 +52,11 @@ TEST_F(ViewCli, DrawsFramesTakesKeysAndQuitsUnderXvfb) {
     EXPECT_TRUE(contains(view.output, "view closed after 14 frames"));
     EXPECT_TRUE(contains(view.output, "144 particles"));
     EXPECT_TRUE(contains(view.output, "steps/s"));
+    // Per-stage times of the last step, in ms.
+    for (const char* stage : {"grid ", "density ", "force ", "integrate ", "step "}) {
+        EXPECT_TRUE(contains(view.output, stage));
+    }
+    EXPECT_TRUE(contains(view.output, " ms"));
     EXPECT_FALSE(contains(view.output, "BLEW UP"));
 
     // The last frame: the fluid where the camera frames it, background far from it, the overlay
