@@ -6,7 +6,12 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 
 packages=(cmake ninja-build g++ pkg-config libgtest-dev libbenchmark-dev nlohmann-json3-dev
-          libcli11-dev)
+          libcli11-dev
+          # rendering (weir render / view, optional at build time): OpenGL through GLVND, EGL,
+          # GLFW, libpng; Mesa's software renderer for machines without a GPU; Xvfb for the
+          # window test; ffmpeg for videos
+          libglfw3-dev libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0 libpng-dev xvfb xauth
+          ffmpeg)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

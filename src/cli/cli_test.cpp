@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/cli_test_support.h"
 #include "io/frame_reader.h"
 
 namespace weir {
@@ -22,82 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
-
-// Like gmock's HasSubstr, which would need libgmock (the test binary links only gtest).
-::testing::AssertionResult contains(const std::string& text, const std::string& part) {
-    if (text.find(part) != std::string::npos) {
-        return ::testing::AssertionSuccess();
-    }
-    return ::testing::AssertionFailure() << "output lacks \"" << part << "\":\n" << text;
-}
-
-std::string fileText(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// The path in single quotes for /bin/sh.
-std::string quoted(const std::string& text) {
-    std::string out = "'";
-    for (char c : text) {
-        out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    }
-    return out + "'";
-}
-
-struct RunResult {
-    int exitCode = -1;   // WEXITSTATUS, or -1 when the process did not exit normally
-    std::string output;  // stdout and stderr together
-};
-
-// Each test works in a fresh directory under the system temp dir, removed at the end; weir runs
-// with it as working directory, so a default out/ would land there too.
-class Cli : public ::testing::Test {
-   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("weir_cli_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        std::error_code ignored;
-        fs::remove_all(dir_, ignored);
-    }
-
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-    void writeFile(const std::string& name, const std::string& text) const {
-        std::ofstream(dir_ / name, std::ios::binary) << text;
-    }
-
-    // Runs `weir ARGS` in the test directory and captures its output.
-    RunResult weir(const std::string& args) {
-        const std::string log = path("weir_output_" + std::to_string(runs_++) + ".txt");
-        const std::string command = "cd " + quoted(dir_.string()) + " && " + quoted(WEIR_BINARY) +
-                                    " " + args + " > " + quoted(log) + " 2>&1";
-        const int status = std::system(command.c_str());
-        RunResult result;
-        result.exitCode = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-        result.output = fileText(log);
-        fs::remove(log);
-        return result;
-    }
-
-    // The names in a directory, sorted.
-    static std::vector<std::string> entries(const fs::path& dir) {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(dir)) {
-            names.push_back(entry.path().filename().string());
-        }
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
-    fs::path dir_;
-    int runs_ = 0;
-};
+using namespace cli_testing;
 
 // A tiny dam break: an 8 x 12 x 10 lattice at 1 cm in a 20 x 20 x 10 cm box, 960 particles.
 constexpr const char* kTinyScene = R"({

@@ -2,16 +2,18 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace weir {
 
 // Exit codes shared by all commands.
 constexpr int kExitOk = 0;
-constexpr int kExitError = 1;     // bad scene, I/O failure, not enough memory
-constexpr int kExitUsage = 2;     // bad command-line arguments
-constexpr int kExitBlowUp = 3;    // the simulation blew up; frames already written stay
+constexpr int kExitError = 1;   // bad scene, I/O failure, not enough memory
+constexpr int kExitUsage = 2;   // bad command-line arguments
+constexpr int kExitBlowUp = 3;  // the simulation blew up; frames already written stay
 
 struct RunOptions {
     std::string scene;  // file path or built-in name; empty: the built-in dam break
@@ -24,16 +26,17 @@ struct RunOptions {
     bool explain = false;
     bool quiet = false;
     bool render = false;  // also render each frame to <out>/images/ (weir_render)
+    bool mesh = false;    // also write each frame's surface to <out>/mesh/
 };
 
 struct BenchOptions {
-    std::string scene;                   // file or built-in name; empty: dam break
-    std::string sizes = "10k,50k";       // particle counts, k/M suffixes allowed
-    std::string columns = "auto";        // cpu-brute,cpu-grid,...,cuda-dense or auto
-    int steps = 20;                      // timed steps (median per stage)
-    int warmup = 3;                      // untimed steps before timing
-    double settle = 0.1;                 // simulated seconds before timing: a fluid in motion
-    double budget = 60;                  // seconds per (size, column); longer runs are skipped
+    std::string scene;              // file or built-in name; empty: dam break
+    std::string sizes = "10k,50k";  // particle counts, k/M suffixes allowed
+    std::string columns = "auto";   // cpu-brute,cpu-grid,...,cuda-dense or auto
+    int steps = 20;                 // timed steps (median per stage)
+    int warmup = 3;                 // untimed steps before timing
+    double settle = 0.1;            // simulated seconds before timing: a fluid in motion
+    double budget = 60;             // seconds per (size, column); longer runs are skipped
     std::string outDir = "bench-out";
     bool noPlot = false;
 };
@@ -45,12 +48,26 @@ struct RenderOptions {
     int width = 1280;
     int height = 720;
     std::string color = "speed";
-    std::string camera;  // "yaw,pitch,distance"; empty: framed on the container
-    std::string target;  // "x,y,z"; empty: the container's centre
-    std::string scene;   // scene whose container and obstacles are drawn; empty: none
-    std::string video;   // an .mp4 made from the images with ffmpeg; empty: none
-    bool surface = false;
+    std::string camera;            // "yaw,pitch,distance"; empty: framed on the container
+    std::string target;            // "x,y,z"; empty: the container's centre
+    std::string scene;             // scene whose container and obstacles are drawn; empty: none
+    std::string video;             // an .mp4 made from the images with ffmpeg; empty: none
+    bool surface = false;          // draw the marching-cubes surface instead of particles
+    std::string backend = "auto";  // where the surface is reconstructed
+    double spacing = 0;            // particle spacing [m]; 0: from the scene or the first frame
     int samples = 4;
+    bool quiet = false;
+};
+
+// `weir mesh` and `weir run --mesh`: the fluid surface of each frame by marching cubes.
+struct MeshOptions {
+    std::string framesDir;
+    std::string outDir;               // empty: <framesDir>/mesh
+    std::string formats = "obj,ply";  // one or both
+    std::string backend = "auto";
+    double spacing = 0;   // particle spacing [m]; 0: estimated from the first frame (or the run)
+    double cellSize = 0;  // marching-cubes cell [m]; 0: half the spacing
+    double iso = 0;       // in particle spacings; > 0 inflates
     bool quiet = false;
 };
 
@@ -65,6 +82,8 @@ struct ViewOptions {
     std::string camera;
     std::string target;
     std::int64_t maxFrames = 0;  // quit after this many drawn frames; 0: when closed
+    std::string press;           // keys pressed on successive frames, e.g. "none,c,m,space"
+    std::string screenshot;      // PNG of the last frame (with maxFrames)
 };
 
 struct Scene;
@@ -76,14 +95,40 @@ struct HostParticles;
 class RunObserver {
    public:
     virtual ~RunObserver() = default;
-    virtual void start(const Scene& scene, const SetupReport& report, const std::string& outDir) = 0;
+    virtual void start(const Scene& scene, const SetupReport& report,
+                       const std::string& outDir) = 0;
     virtual void frame(std::int64_t index, double time, const HostParticles& particles) = 0;
+    // After the last frame of a run that did not fail: a summary line.
+    virtual void finish() {}
+};
+
+// Several observers as one, called in order.
+class RunObserverList : public RunObserver {
+   public:
+    void add(std::unique_ptr<RunObserver> observer) { list_.push_back(std::move(observer)); }
+    bool empty() const { return list_.empty(); }
+    void start(const Scene& scene, const SetupReport& report, const std::string& outDir) override {
+        for (auto& o : list_) o->start(scene, report, outDir);
+    }
+    void frame(std::int64_t index, double time, const HostParticles& particles) override {
+        for (auto& o : list_) o->frame(index, time, particles);
+    }
+    void finish() override {
+        for (auto& o : list_) o->finish();
+    }
+
+   private:
+    std::vector<std::unique_ptr<RunObserver>> list_;
 };
 
 // A scene file path or a built-in scene's name; empty: the built-in dam break.
 Scene resolveScene(const std::string& spec);
 
 int runCommand(const RunOptions& options, RunObserver* observer = nullptr);
+int meshCommand(const MeshOptions& options);
+// `weir run --mesh`: writes <out>/mesh/surface_NNNNN.{obj,ply} for every frame. Throws
+// std::invalid_argument for bad options.
+std::unique_ptr<RunObserver> makeRunMesher(const MeshOptions& options);
 int benchCommand(const BenchOptions& options);
 int infoCommand();
 

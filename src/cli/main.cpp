@@ -1,10 +1,44 @@
-// weir's command line: `weir run`, `weir info`.
+// weir's command line: `weir run`, `weir render`, `weir mesh`, `weir view`, `weir bench`,
+// `weir info`.
 #include <CLI/CLI.hpp>
-
 #include <iostream>
 
 #include "cli/commands.h"
 #include "scene/scene.h"
+#if defined(WEIR_HAS_RENDER)
+#include "render/render_commands.h"
+#endif
+
+namespace {
+
+constexpr const char* kNoRendering =
+    "weir: error: this weir was built without rendering (OpenGL, EGL, GLFW or libpng were not "
+    "found when it was configured). On Debian/Ubuntu: apt-get install libglfw3-dev libegl-dev "
+    "libgl-dev libpng-dev libegl-mesa0 libgl1-mesa-dri, then configure and build again (or run "
+    "scripts/setup.sh).\n";
+
+// The drawing options `weir render` and `weir run --render` share.
+void addImageOptions(CLI::App* cmd, weir::RenderOptions& o) {
+    cmd->add_option("--width", o.width, "Image width in pixels")
+        ->check(CLI::Range(16, 16384))
+        ->capture_default_str();
+    cmd->add_option("--height", o.height, "Image height in pixels")
+        ->check(CLI::Range(16, 16384))
+        ->capture_default_str();
+    cmd->add_option("--color,--colour", o.color, "Particle colour: speed, density or pressure")
+        ->check(CLI::IsMember({"speed", "density", "pressure"}))
+        ->capture_default_str();
+    cmd->add_option("--camera", o.camera,
+                    "Camera as yaw,pitch,distance (degrees, degrees, metres); default: framed "
+                    "on the container, yaw 25, pitch 20");
+    cmd->add_option("--target", o.target,
+                    "Point the camera looks at, x,y,z (default: the container's centre)");
+    cmd->add_option("--samples", o.samples, "Multisampling per pixel (1 = off)")
+        ->check(CLI::Range(1, 16))
+        ->capture_default_str();
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     using namespace weir;
@@ -23,9 +57,10 @@ int main(int argc, char** argv) {
     runCmd->add_option("--backend", run.backend, "auto (GPU if present), cuda or cpu")
         ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
         ->capture_default_str();
-    runCmd->add_option("--neighbours", run.neighbours,
-                       "auto, grid (paper §6.2 cell and neighbour tables), dense (same sort, "
-                       "dense cell table: faster) or brute (O(N^2), for comparison)")
+    runCmd
+        ->add_option("--neighbours", run.neighbours,
+                     "auto, grid (paper §6.2 cell and neighbour tables), dense (same sort, "
+                     "dense cell table: faster) or brute (O(N^2), for comparison)")
         ->check(CLI::IsMember({"auto", "grid", "dense", "brute"}))
         ->capture_default_str();
     runCmd->add_option("--particles,-n", run.particles, "Particle count (overrides the scene)")
@@ -38,6 +73,19 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     runCmd->add_flag("--explain", run.explain, "Print the derived parameters and why");
     runCmd->add_flag("--quiet,-q", run.quiet, "No progress line");
+    RenderOptions runRender;
+    MeshOptions runMesh;
+    runCmd->add_flag("--render", run.render,
+                     "Also render every frame to OUT/images/frame_NNNNN.png (offscreen, EGL)");
+    runCmd->add_flag("--surface", runRender.surface,
+                     "With --render: draw the fluid's surface instead of particles");
+    addImageOptions(runCmd, runRender);
+    runCmd->add_flag("--mesh", run.mesh,
+                     "Also write every frame's surface to OUT/mesh/surface_NNNNN.obj/.ply");
+    runCmd->add_option("--mesh-format", runMesh.formats, "With --mesh: obj, ply or obj,ply")
+        ->capture_default_str();
+    runCmd->add_option("--cell-size", runMesh.cellSize,
+                       "With --mesh: marching-cubes cell in metres (default half the spacing)");
 
     BenchOptions bench;
     CLI::App* benchCmd = app.add_subcommand(
@@ -45,9 +93,10 @@ int main(int argc, char** argv) {
     benchCmd->add_option("scene", bench.scene, "Scene file or built-in scene; default dam_break");
     benchCmd->add_option("--sizes", bench.sizes, "Particle counts, e.g. 10k,50k,100k,1M")
         ->capture_default_str();
-    benchCmd->add_option("--backends,--columns", bench.columns,
-                         "auto, or a list of cpu-brute, cpu-grid, cpu-dense, cuda-brute, "
-                         "cuda-grid, cuda-dense")
+    benchCmd
+        ->add_option("--backends,--columns", bench.columns,
+                     "auto, or a list of cpu-brute, cpu-grid, cpu-dense, cuda-brute, "
+                     "cuda-grid, cuda-dense")
         ->capture_default_str();
     benchCmd->add_option("--steps", bench.steps, "Timed steps; stage times are their medians")
         ->check(CLI::Range(1, 100000))
@@ -55,18 +104,108 @@ int main(int argc, char** argv) {
     benchCmd->add_option("--warmup", bench.warmup, "Untimed steps before timing")
         ->check(CLI::Range(0, 100000))
         ->capture_default_str();
-    benchCmd->add_option("--settle", bench.settle,
-                         "Simulated seconds before timing, so the fluid is in motion")
+    benchCmd
+        ->add_option("--settle", bench.settle,
+                     "Simulated seconds before timing, so the fluid is in motion")
         ->check(CLI::Range(0.0, 100.0))
         ->capture_default_str();
-    benchCmd->add_option("--budget", bench.budget,
-                         "Seconds allowed per size and column; slower runs are skipped, never "
-                         "extrapolated")
+    benchCmd
+        ->add_option("--budget", bench.budget,
+                     "Seconds allowed per size and column; slower runs are skipped, never "
+                     "extrapolated")
         ->check(CLI::Range(0.0, 1e6))
         ->capture_default_str();
     benchCmd->add_option("--out,-o", bench.outDir, "Directory for bench.json, bench.csv, bench.png")
         ->capture_default_str();
     benchCmd->add_flag("--no-plot", bench.noPlot, "Skip the PNG plot");
+
+    RenderOptions render;
+    CLI::App* renderCmd = app.add_subcommand(
+        "render", "Render the frames of a run to PNG images (and an MP4 with ffmpeg), offscreen");
+    renderCmd
+        ->add_option("frames", render.framesDir,
+                     "Frames directory written by `weir run` (holds frames.json)")
+        ->required();
+    renderCmd->add_option("--out,-o", render.outDir, "Images directory (default FRAMES/images)");
+    addImageOptions(renderCmd, render);
+    renderCmd->add_option("--scene", render.scene,
+                          "Scene file or built-in scene whose container and obstacles are drawn "
+                          "(default: a box around the particles)");
+    renderCmd->add_flag("--surface", render.surface,
+                        "Draw the fluid's surface (marching cubes) instead of particles");
+    renderCmd
+        ->add_option("--backend", render.backend,
+                     "Where --surface is reconstructed: auto, cuda or cpu")
+        ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
+        ->capture_default_str();
+    renderCmd->add_option("--spacing", render.spacing,
+                          "Particle spacing in metres: sets the sphere size and the surface's "
+                          "scale (default: from --scene, else measured on the first frame)");
+    renderCmd->add_option("--video", render.video,
+                          "Also encode the images into this .mp4 with ffmpeg (H.264)");
+    renderCmd->add_flag("--quiet,-q", render.quiet, "No progress line");
+
+    MeshOptions mesh;
+    CLI::App* meshCmd = app.add_subcommand(
+        "mesh", "Reconstruct the fluid surface of each frame (marching cubes): OBJ and PLY files");
+    meshCmd
+        ->add_option("frames", mesh.framesDir,
+                     "Frames directory written by `weir run` (holds frames.json)")
+        ->required();
+    meshCmd->add_option("--out,-o", mesh.outDir, "Mesh directory (default FRAMES/mesh)");
+    meshCmd->add_option("--format", mesh.formats, "obj, ply or obj,ply")->capture_default_str();
+    meshCmd->add_option("--backend", mesh.backend, "auto (GPU if present), cuda or cpu")
+        ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
+        ->capture_default_str();
+    meshCmd->add_option("--spacing", mesh.spacing,
+                        "Particle spacing in metres (default: measured on the first frame)");
+    meshCmd->add_option("--cell-size", mesh.cellSize,
+                        "Marching-cubes cell in metres (default half the spacing)");
+    meshCmd
+        ->add_option("--iso", mesh.iso,
+                     "Iso-value in particle spacings: 0 is the fluid surface, > 0 inflates it")
+        ->capture_default_str();
+    meshCmd->add_flag("--quiet,-q", mesh.quiet, "No progress line");
+
+    ViewOptions view;
+    CLI::App* viewCmd = app.add_subcommand(
+        "view",
+        "Simulate a scene in a window and draw it as it runs. Keys: space pause, s single step, "
+        "r reset, c colouring, m particles/surface, f frame the scene, arrows orbit, +/- zoom, "
+        "q quit. Mouse: left drag orbit, right (or shift+left) drag pan, wheel zoom");
+    viewCmd->add_option("scene", view.scene,
+                        "Scene JSON file or built-in scene (" + scenes + "); default dam_break");
+    viewCmd->add_option("--backend", view.backend, "auto (GPU if present), cuda or cpu")
+        ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
+        ->capture_default_str();
+    viewCmd->add_option("--neighbours", view.neighbours, "auto, grid, dense or brute")
+        ->check(CLI::IsMember({"auto", "grid", "dense", "brute"}))
+        ->capture_default_str();
+    viewCmd->add_option("--particles,-n", view.particles, "Particle count (overrides the scene)")
+        ->check(CLI::Range(std::int64_t(1), std::int64_t(2147483647)));
+    viewCmd->add_option("--width", view.width, "Window width in pixels")
+        ->check(CLI::Range(16, 16384))
+        ->capture_default_str();
+    viewCmd->add_option("--height", view.height, "Window height in pixels")
+        ->check(CLI::Range(16, 16384))
+        ->capture_default_str();
+    viewCmd
+        ->add_option("--color,--colour", view.color, "Particle colour: speed, density or pressure")
+        ->check(CLI::IsMember({"speed", "density", "pressure"}))
+        ->capture_default_str();
+    viewCmd->add_option("--camera", view.camera, "Camera as yaw,pitch,distance");
+    viewCmd->add_option("--target", view.target, "Point the camera looks at, x,y,z");
+    viewCmd
+        ->add_option("--max-frames", view.maxFrames,
+                     "Close after drawing this many frames (0: when the window is closed)")
+        ->check(CLI::Range(std::int64_t(0), std::int64_t(1) << 40))
+        ->capture_default_str();
+    viewCmd->add_option("--press", view.press,
+                        "Keys pressed on successive frames, for demos and tests, e.g. "
+                        "none,c,m,space (names: space s r c m f q left right up down plus minus "
+                        "escape none)");
+    viewCmd->add_option("--screenshot", view.screenshot,
+                        "With --max-frames: save the last frame drawn to this PNG");
 
     app.add_subcommand("info", "Show the build, the backends and the GPU found");
 
@@ -83,7 +222,50 @@ int main(int argc, char** argv) {
         return kExitUsage;
     }
     if (runCmd->parsed()) {
-        return runCommand(run);
+        try {
+            RunObserverList observers;
+            if (run.render) {
+#if defined(WEIR_HAS_RENDER)
+                runRender.backend = run.backend;
+                runRender.quiet = run.quiet;
+                observers.add(makeRunRenderer(runRender));
+#else
+                std::cerr << kNoRendering;
+                return kExitError;
+#endif
+            } else if (runRender.surface) {
+                std::cerr << "weir: error: --surface draws surfaces in rendered images and needs "
+                             "--render (for mesh files use --mesh)\n";
+                return kExitUsage;
+            }
+            if (run.mesh) {
+                runMesh.backend = run.backend;
+                observers.add(makeRunMesher(runMesh));
+            }
+            return runCommand(run, observers.empty() ? nullptr : &observers);
+        } catch (const std::invalid_argument& e) {
+            std::cerr << "weir: error: " << e.what() << "\n";
+            return kExitUsage;
+        }
+    }
+    if (renderCmd->parsed()) {
+#if defined(WEIR_HAS_RENDER)
+        return renderCommand(render);
+#else
+        std::cerr << kNoRendering;
+        return kExitError;
+#endif
+    }
+    if (viewCmd->parsed()) {
+#if defined(WEIR_HAS_RENDER)
+        return viewCommand(view);
+#else
+        std::cerr << kNoRendering;
+        return kExitError;
+#endif
+    }
+    if (meshCmd->parsed()) {
+        return meshCommand(mesh);
     }
     if (benchCmd->parsed()) {
         return benchCommand(bench);

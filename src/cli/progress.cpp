@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace weir {
 
@@ -54,6 +55,43 @@ void Progress::update(std::int64_t frame, double simTime, long long steps) {
 }
 
 void Progress::finish() {
+    if (lineOpen_) {
+        std::fprintf(stderr, "\n");
+        lineOpen_ = false;
+    }
+}
+
+ItemProgress::ItemProgress(std::string label, std::size_t total, bool quiet)
+    : label_(std::move(label)),
+      total_(total),
+      quiet_(quiet),
+      live_(isatty(fileno(stderr)) != 0),
+      start_(std::chrono::steady_clock::now()) {}
+
+double ItemProgress::elapsedSeconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void ItemProgress::update(std::size_t done) {
+    const std::size_t tenth = total_ / 10 > 0 ? total_ / 10 : 1;
+    if (quiet_ || done == 0 || (!live_ && done != total_ && done % tenth != 0)) {
+        return;
+    }
+    const double elapsed = elapsedSeconds();
+    char line[200];
+    std::snprintf(line, sizeof line, "%s %zu/%zu  %.0f ms each  elapsed %s  ETA %s", label_.c_str(),
+                  done, total_, 1000 * elapsed / double(done), formatDuration(elapsed).c_str(),
+                  formatDuration(elapsed * double(total_ - done) / double(done)).c_str());
+    if (live_) {
+        std::fprintf(stderr, "\r%s\033[K", line);
+        lineOpen_ = true;
+    } else {
+        std::fprintf(stderr, "%s\n", line);
+    }
+    std::fflush(stderr);
+}
+
+void ItemProgress::finish() {
     if (lineOpen_) {
         std::fprintf(stderr, "\n");
         lineOpen_ = false;

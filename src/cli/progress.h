@@ -2,6 +2,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -18,6 +19,24 @@ class Progress {
 
    private:
     std::int64_t total_;
+    bool quiet_;
+    bool live_;
+    bool lineOpen_ = false;
+    std::chrono::steady_clock::time_point start_;
+};
+
+// Progress over a list of items (images, meshes): "LABEL i/N  X ms each  elapsed  ETA", live on
+// a terminal, about ten log lines otherwise.
+class ItemProgress {
+   public:
+    ItemProgress(std::string label, std::size_t total, bool quiet);
+    void update(std::size_t done);
+    void finish();
+    double elapsedSeconds() const;
+
+   private:
+    std::string label_;
+    std::size_t total_;
     bool quiet_;
     bool live_;
     bool lineOpen_ = false;

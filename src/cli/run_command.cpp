@@ -35,8 +35,7 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         SimulationSetup setup = buildSetup(scene, setupOptions, &report);
         const Backend backend = parseBackend(options.backend);
         const NeighbourMode mode = resolveNeighbourMode(parseNeighbourMode(options.neighbours),
-                                                        setup.grid,
-                                                        setup.particleCount());
+                                                        setup.grid, setup.particleCount());
         const FrameFormat format = parseFrameFormat(options.format);
         const std::string outDir = options.outDir.empty() ? "out/" + scene.name : options.outDir;
         const std::int64_t frames =
@@ -57,9 +56,8 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         auto sim = makeSimulation(backend, mode, std::move(setup));
         std::cerr << "weir: " << sim->particleCount() << " particles on " << backendName(backend)
                   << " (" << sim->deviceName() << "), " << neighbourModeName(mode)
-                  << " neighbours, dt " << sim->params().timeStep << " s, "
-                  << report.stepsPerFrame << " steps per frame, " << frames << " frames to "
-                  << outDir << "/\n";
+                  << " neighbours, dt " << sim->params().timeStep << " s, " << report.stepsPerFrame
+                  << " steps per frame, " << frames << " frames to " << outDir << "/\n";
 
         FrameWriter writer(outDir, format);
         HostParticles host;
@@ -88,9 +86,12 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             progress.update(frame, sim->time(), sim->stepCount());
         }
         progress.finish();
+        if (observer != nullptr) {
+            observer->finish();
+        }
         double seconds = progress.elapsedSeconds();
-        std::cerr << "weir: done, " << frames + 1 << " frames, " << sim->stepCount()
-                  << " steps in " << formatDuration(seconds) << " ("
+        std::cerr << "weir: done, " << frames + 1 << " frames, " << sim->stepCount() << " steps in "
+                  << formatDuration(seconds) << " ("
                   << (seconds > 0 ? double(sim->stepCount()) / seconds : 0.0) << " steps/s)\n";
         return kExitOk;
     } catch (const std::invalid_argument& e) {

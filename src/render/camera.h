@@ -31,11 +31,11 @@ Mat4 perspective(double fovYDegrees, double aspect, double nearPlane, double far
 Mat4 pixelOrtho(int width, int height);
 
 struct OrbitCamera {
-    double yaw = 25;       // degrees about +y; 0 looks along -z from the +z side
-    double pitch = 20;     // degrees above the horizontal, within (-89, 89)
-    double distance = 3;   // metres from the target
-    Vec3d target{};        // the point orbited and looked at
-    double fovY = 40;      // vertical field of view, degrees
+    double yaw = 25;      // degrees about +y; 0 looks along -z from the +z side
+    double pitch = 20;    // degrees above the horizontal, within (-89, 89)
+    double distance = 3;  // metres from the target
+    Vec3d target{};       // the point orbited and looked at
+    double fovY = 40;     // vertical field of view, degrees
 
     Vec3d eye() const;
     Vec3d forward() const;  // unit, from eye to target

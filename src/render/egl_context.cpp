@@ -48,10 +48,10 @@ std::vector<Candidate> candidateDisplays() {
         reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
     auto queryDeviceString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
         eglGetProcAddress("eglQueryDeviceStringEXT"));
-    const bool platformExt = getPlatformDisplay != nullptr &&
-                             (hasExtension(client, "EGL_EXT_platform_base") ||
-                              hasExtension(client, "EGL_EXT_platform_device") ||
-                              hasExtension(client, "EGL_MESA_platform_surfaceless"));
+    const bool platformExt =
+        getPlatformDisplay != nullptr && (hasExtension(client, "EGL_EXT_platform_base") ||
+                                          hasExtension(client, "EGL_EXT_platform_device") ||
+                                          hasExtension(client, "EGL_MESA_platform_surfaceless"));
 
     if (platformExt && queryDevices != nullptr && hasExtension(client, "EGL_EXT_platform_device")) {
         EGLint count = 0;
@@ -66,10 +66,9 @@ std::vector<Candidate> candidateDisplays() {
                                              : nullptr;
                 const bool isSoftware = hasExtension(deviceExts, "EGL_MESA_device_software");
                 EGLDeviceEXT device = devices[i];
-                Candidate c{"EGL device " + std::to_string(i) + (isSoftware ? " (software)" : ""),
-                            [=] {
-                                return getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
-                            }};
+                Candidate c{
+                    "EGL device " + std::to_string(i) + (isSoftware ? " (software)" : ""),
+                    [=] { return getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, device, nullptr); }};
                 (isSoftware ? software : candidates).push_back(c);
             }
             candidates.insert(candidates.end(), software.begin(), software.end());
@@ -81,7 +80,8 @@ std::vector<Candidate> candidateDisplays() {
                                                             EGL_DEFAULT_DISPLAY, nullptr);
                               }});
     }
-    candidates.push_back({"EGL default display", [] { return eglGetDisplay(EGL_DEFAULT_DISPLAY); }});
+    candidates.push_back(
+        {"EGL default display", [] { return eglGetDisplay(EGL_DEFAULT_DISPLAY); }});
     return candidates;
 }
 

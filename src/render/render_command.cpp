@@ -8,17 +8,19 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
 
 #include "cli/progress.h"
-#include "io/frame_reader.h"
+#include "core/backend.h"
+#include "io/frame_index.h"
 #include "render/egl_context.h"
 #include "render/gl.h"
 #include "render/render_commands.h"
 #include "render/renderer.h"
 #include "scene/setup.h"
+#include "surface/surface.h"
 
 extern char** environ;
 
@@ -31,73 +33,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-struct FrameEntry {
-    int index = 0;
-    double time = 0;
-    std::string path;
-};
-
-// The frames listed in <dir>/frames.json, in index order; IoError naming the file and field.
-std::vector<FrameEntry> readFrameIndex(const std::string& dir) {
-    const std::string indexPath = (fs::path(dir) / "frames.json").string();
-    std::ifstream in(indexPath);
-    if (!in) {
-        throw IoError("cannot read '" + indexPath + "': no such file (is '" + dir +
-                      "' the output directory of `weir run`?)");
-    }
-    nlohmann::json index;
-    try {
-        in >> index;
-    } catch (const nlohmann::json::exception& e) {
-        throw IoError("cannot read '" + indexPath + "': not JSON (" + e.what() + ")");
-    }
-    auto bad = [&](const std::string& field, const std::string& what) {
-        return IoError("frames index '" + indexPath + "': field '" + field + "' " + what);
-    };
-    if (!index.is_object() || !index.contains("frames") || !index["frames"].is_array()) {
-        throw bad("frames", "is missing or not an array");
-    }
-    std::vector<FrameEntry> frames;
-    for (std::size_t i = 0; i < index["frames"].size(); ++i) {
-        const nlohmann::json& entry = index["frames"][i];
-        const std::string at = "frames[" + std::to_string(i) + "]";
-        if (!entry.is_object() || !entry.contains("index") || !entry["index"].is_number_integer() ||
-            entry["index"].get<long long>() < 0) {
-            throw bad(at + ".index", "is missing or not an integer >= 0");
-        }
-        if (!entry.contains("time") || !entry["time"].is_number()) {
-            throw bad(at + ".time", "is missing or not a number");
-        }
-        if (!entry.contains("file") || !entry["file"].is_string() ||
-            entry["file"].get<std::string>().empty()) {
-            throw bad(at + ".file", "is missing or not a file name");
-        }
-        frames.push_back({entry["index"].get<int>(), entry["time"].get<double>(),
-                          (fs::path(dir) / entry["file"].get<std::string>()).string()});
-    }
-    if (frames.empty()) {
-        throw bad("frames", "lists no frames");
-    }
-    std::sort(frames.begin(), frames.end(),
-              [](const FrameEntry& a, const FrameEntry& b) { return a.index < b.index; });
-    return frames;
-}
-
-HostParticles readFrame(const std::string& path) {
-    const std::string extension = fs::path(path).extension().string();
-    if (extension == ".vtu") {
-        return readVtu(path);
-    }
-    if (extension == ".ply") {
-        return readPly(path);
-    }
-    if (extension == ".csv") {
-        return readCsv(path);
-    }
-    throw IoError("cannot read '" + path + "': unknown frame format '" + extension +
-                  "' (allowed: .vtu, .ply, .csv)");
 }
 
 std::string imageName(std::int64_t index) {
@@ -177,34 +112,6 @@ void encodeVideo(const std::string& imagesDir, int first, int count, double fps,
     fs::rename(partial, outFile);
 }
 
-// A progress line for rendering: live on a terminal, one line per tenth otherwise.
-class RenderProgress {
-   public:
-    RenderProgress(std::size_t total, bool quiet)
-        : total_(total), quiet_(quiet), live_(::isatty(::fileno(stderr)) != 0) {}
-    void update(std::size_t done, double elapsed) {
-        if (quiet_ || (!live_ && done != total_ && done % std::max<std::size_t>(total_ / 10, 1))) {
-            return;
-        }
-        char line[160];
-        std::snprintf(line, sizeof line, "render %zu/%zu  %.0f ms/image  elapsed %s  ETA %s", done,
-                      total_, 1000 * elapsed / double(done), formatDuration(elapsed).c_str(),
-                      formatDuration(elapsed * double(total_ - done) / double(done)).c_str());
-        std::fprintf(stderr, live_ ? "\r%s\033[K" : "%s\n", line);
-        std::fflush(stderr);
-    }
-    void finish() {
-        if (live_ && !quiet_) {
-            std::fprintf(stderr, "\n");
-        }
-    }
-
-   private:
-    std::size_t total_;
-    bool quiet_;
-    bool live_;
-};
-
 // The container of the particles of all frames, padded by a particle radius, where no scene says.
 Box particleBounds(const HostParticles& p, Box box, double pad) {
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -226,24 +133,50 @@ void checkImageSize(int width, int height) {
     }
 }
 
+// What every drawing command checks before it starts: image size, samples, colour field.
+void checkRenderOptions(const RenderOptions& o) {
+    checkImageSize(o.width, o.height);
+    if (o.samples < 1 || o.samples > 16) {
+        throw std::invalid_argument("--samples " + std::to_string(o.samples) +
+                                    " must be within 1..16");
+    }
+    parseColourField(o.color);
+    parseBackend(o.backend);
+}
+
 // Draws frames of one run to <imagesDir>/frame_NNNNN.png: an EGL context, the renderer and a
-// fixed camera.
+// fixed camera; particles, or (surface mode) the marching-cubes surface of the particles.
 class FrameImager {
    public:
-    FrameImager(const SceneGeometry& geometry, const std::string& imagesDir, int width, int height,
-                const OrbitCamera& camera, ColourField field, int samples)
-        : imagesDir_(imagesDir), width_(width), height_(height), camera_(camera), field_(field) {
+    FrameImager(const SceneGeometry& geometry, const std::string& imagesDir,
+                const RenderOptions& options, const OrbitCamera& camera)
+        : imagesDir_(imagesDir),
+          width_(options.width),
+          height_(options.height),
+          camera_(camera),
+          field_(parseColourField(options.color)),
+          surface_(options.surface),
+          surfaceBackend_(parseBackend(options.backend)) {
         fs::create_directories(imagesDir_);
         renderer_.setGeometry(geometry);
-        renderer_.setSamples(samples);
+        renderer_.setSamples(options.samples);
+        renderer_.setMode(surface_ ? RenderMode::Surface : RenderMode::Particles);
     }
     const std::string& contextDescription() const { return context_.description(); }
     void setColourRange(const ValueRange& range) { renderer_.setColourRange(range); }
+    // The particle radius drawn, and the lattice spacing the surface is built at (2 radii).
     void setRadius(double radius) { radius_ = radius; }
     double radius() const { return radius_; }
 
     void render(std::int64_t index, const HostParticles& particles) {
         const auto start = Clock::now();
+        if (surface_) {
+            SurfaceOptions options;
+            options.spacing = 2 * radius_;
+            const auto meshStart = Clock::now();
+            renderer_.setMesh(reconstructSurface(surfaceBackend_, particles, options));
+            meshSeconds_ += secondsSince(meshStart);
+        }
         renderer_.setParticles(particles, field_, radius_);
         writePng((fs::path(imagesDir_) / imageName(index)).string(),
                  renderer_.renderImage(camera_, width_, height_));
@@ -251,7 +184,18 @@ class FrameImager {
         ++images_;
     }
     int images() const { return images_; }
-    double secondsPerImage() const { return images_ > 0 ? seconds_ / images_ : 0; }
+    std::string timing() const {
+        if (images_ == 0) {
+            return "no images";
+        }
+        std::string text = std::to_string(std::lround(1000 * (seconds_ - meshSeconds_) / images_)) +
+                           " ms per image to draw and write";
+        if (surface_) {
+            text += " + " + std::to_string(std::lround(1000 * meshSeconds_ / images_)) +
+                    " ms per surface on " + backendName(surfaceBackend_);
+        }
+        return text;
+    }
 
    private:
     OffscreenContext context_;  // made current before the renderer is built
@@ -260,22 +204,28 @@ class FrameImager {
     int width_, height_;
     OrbitCamera camera_;
     ColourField field_;
+    bool surface_;
+    Backend surfaceBackend_;
     double radius_ = 0.01;
     int images_ = 0;
-    double seconds_ = 0;
+    double seconds_ = 0, meshSeconds_ = 0;
 };
 
 // `weir run --render`: the scene's geometry and physics fix the camera and colour range.
 class RunRenderer : public RunObserver {
    public:
+    explicit RunRenderer(const RenderOptions& options) : options_(options) {
+        checkRenderOptions(options_);
+    }
     void start(const Scene& scene, const SetupReport& report, const std::string& outDir) override {
-        const RenderOptions defaults;
-        const ColourField field = parseColourField(defaults.color);
-        imagesDir_ = (fs::path(outDir) / "images").string();
-        const double aspect = double(defaults.width) / defaults.height;
-        imager_ = std::make_unique<FrameImager>(
-            SceneGeometry::of(scene), imagesDir_, defaults.width, defaults.height,
-            frameBox(scene.container, aspect), field, defaults.samples);
+        const ColourField field = parseColourField(options_.color);
+        imagesDir_ =
+            options_.outDir.empty() ? (fs::path(outDir) / "images").string() : options_.outDir;
+        const OrbitCamera camera =
+            commandLineCamera(scene.container, double(options_.width) / options_.height,
+                              options_.camera, options_.target);
+        imager_ =
+            std::make_unique<FrameImager>(SceneGeometry::of(scene), imagesDir_, options_, camera);
         const double g = length(scene.gravity);
         imager_->setColourRange(physicalRange(field, scene.restDensity, report.expectedSpeed,
                                               scene.restDensity * g * report.fluidHeight));
@@ -286,17 +236,47 @@ class RunRenderer : public RunObserver {
     void frame(std::int64_t index, double, const HostParticles& particles) override {
         imager_->render(index, particles);
     }
-    void report() const {
+    void finish() override {
         if (imager_ && imager_->images() > 0) {
             std::cerr << "weir: " << imager_->images() << " images in " << imagesDir_ << "/ ("
-                      << std::lround(imager_->secondsPerImage() * 1000) << " ms each)\n";
+                      << imager_->timing() << ")\n";
         }
     }
 
    private:
+    RenderOptions options_;
     std::unique_ptr<FrameImager> imager_;
     std::string imagesDir_;
 };
+
+// The lattice spacing the frames were seeded at: --spacing; else, with a scene, the spacing at
+// which the scene seeds exactly the frames' particle count (its own resolution, or the count as
+// `weir run --particles` gives it); else the median nearest-neighbour distance in the first frame
+// (right for frame 0, a little short for a moving fluid).
+double particleSpacing(const RenderOptions& options, const std::optional<Scene>& scene,
+                       const HostParticles& first) {
+    if (options.spacing > 0) {
+        return options.spacing;
+    }
+    if (scene) {
+        for (bool byCount : {false, true}) {
+            SetupOptions setupOptions;
+            if (byCount) {
+                setupOptions.particleCount = std::int64_t(first.size());
+            }
+            SetupReport report;
+            try {
+                const SimulationSetup setup = buildSetup(*scene, setupOptions, &report);
+                if (setup.particles.size() == first.size()) {
+                    return report.spacing;
+                }
+            } catch (const std::exception&) {
+                // not this resolution
+            }
+        }
+    }
+    return 2 * estimateParticleRadius(first);
+}
 
 int reportError(const std::exception& e, int code) {
     std::cerr << "weir: error: " << e.what() << "\n";
@@ -305,9 +285,17 @@ int reportError(const std::exception& e, int code) {
 
 }  // namespace
 
+std::unique_ptr<RunObserver> makeRunRenderer(const RenderOptions& options) {
+    return std::make_unique<RunRenderer>(options);
+}
+
 int renderCommand(const RenderOptions& options) {
     try {
-        checkImageSize(options.width, options.height);
+        checkRenderOptions(options);
+        if (!(options.spacing >= 0) || !std::isfinite(options.spacing)) {
+            throw std::invalid_argument("--spacing " + std::to_string(options.spacing) +
+                                        " must be a length in metres > 0 (0: automatic)");
+        }
         const ColourField field = parseColourField(options.color);
         if (!options.video.empty()) {
             if (fs::path(options.video).extension() != ".mp4") {
@@ -318,19 +306,10 @@ int renderCommand(const RenderOptions& options) {
                 throw IoError(kNoFfmpeg);
             }
         }
-        if (options.surface) {
-            throw std::invalid_argument(
-                "--surface: drawing surface meshes from frames is not available yet (the mesh "
-                "reader is not in this build); render particles instead");
-        }
-        if (options.samples < 1 || options.samples > 16) {
-            throw std::invalid_argument("--samples " + std::to_string(options.samples) +
-                                        " must be within 1..16");
-        }
         const std::vector<FrameEntry> frames = readFrameIndex(options.framesDir);
-        const std::string imagesDir =
-            options.outDir.empty() ? (fs::path(options.framesDir) / "images").string()
-                                   : options.outDir;
+        const std::string imagesDir = options.outDir.empty()
+                                          ? (fs::path(options.framesDir) / "images").string()
+                                          : options.outDir;
         std::optional<Scene> scene;
         if (!options.scene.empty()) {
             scene = resolveScene(options.scene);
@@ -340,13 +319,13 @@ int renderCommand(const RenderOptions& options) {
         // range (so that a colour means one value in the whole video) and, without a scene, the
         // box the camera frames.
         const auto start = Clock::now();
-        const HostParticles first = readFrame(frames.front().path);
-        const double radius = estimateParticleRadius(first);
+        const HostParticles first = readFrameFile(frames.front().path);
+        const double radius = 0.5 * particleSpacing(options, scene, first);
         ValueRange range = robustRange(fieldValues(first, field), field);
         Box bounds{{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
         bounds = particleBounds(first, bounds, radius);
         for (std::size_t i = 1; i < frames.size(); ++i) {
-            const HostParticles p = readFrame(frames[i].path);
+            const HostParticles p = readFrameFile(frames[i].path);
             range = unite(range, robustRange(fieldValues(p, field), field));
             if (!scene) {
                 bounds = particleBounds(p, bounds, radius);
@@ -363,28 +342,30 @@ int renderCommand(const RenderOptions& options) {
             commandLineCamera(geometry.container, double(options.width) / options.height,
                               options.camera, options.target);
 
-        FrameImager imager(geometry, imagesDir, options.width, options.height, camera, field,
-                           options.samples);
+        FrameImager imager(geometry, imagesDir, options, camera);
         imager.setColourRange(range);
         imager.setRadius(radius);
         if (!options.quiet) {
             std::cerr << "weir: rendering " << frames.size() << " frames of " << options.framesDir
                       << " to " << imagesDir << "/ (" << options.width << "x" << options.height
-                      << ", " << colourFieldName(field) << " " << range.lo << ".." << range.hi
-                      << " " << colourFieldUnit(field) << "; " << imager.contextDescription()
-                      << ")\n";
+                      << ", ";
+            if (options.surface) {
+                std::cerr << "surface";
+            } else {
+                std::cerr << colourFieldName(field) << " " << range.lo << ".." << range.hi << " "
+                          << colourFieldUnit(field);
+            }
+            std::cerr << ", particle spacing " << 2 * radius << " m; "
+                      << imager.contextDescription() << ")\n";
         }
-        RenderProgress progress(frames.size(), options.quiet);
-        const auto renderStart = Clock::now();
+        ItemProgress progress("render", frames.size(), options.quiet);
         for (std::size_t i = 0; i < frames.size(); ++i) {
-            imager.render(frames[i].index,
-                          i == 0 ? first : readFrame(frames[i].path));
-            progress.update(i + 1, secondsSince(renderStart));
+            imager.render(frames[i].index, i == 0 ? first : readFrameFile(frames[i].path));
+            progress.update(i + 1);
         }
         progress.finish();
         std::cerr << "weir: " << frames.size() << " images in " << imagesDir << "/, "
-                  << std::lround(imager.secondsPerImage() * 1000) << " ms per image to draw, "
-                  << formatDuration(secondsSince(start)) << " in all\n";
+                  << imager.timing() << ", " << formatDuration(secondsSince(start)) << " in all\n";
 
         if (!options.video.empty()) {
             const bool contiguous =
@@ -393,10 +374,10 @@ int renderCommand(const RenderOptions& options) {
                 std::cerr << "weir: warning: frame indices have gaps; the video stops at the "
                              "first gap\n";
             }
-            const double interval =
-                frames.size() > 1 ? (frames.back().time - frames.front().time) /
-                                        double(frames.back().index - frames.front().index)
-                                  : 0;
+            const double interval = frames.size() > 1
+                                        ? (frames.back().time - frames.front().time) /
+                                              double(frames.back().index - frames.front().index)
+                                        : 0;
             const double fps = interval > 0 ? 1.0 / interval : 30.0;
             encodeVideo(imagesDir, frames.front().index, int(frames.size()), fps, options.video);
             std::cerr << "weir: video " << options.video << " (H.264, " << fps << " frames/s)\n";
@@ -407,13 +388,6 @@ int renderCommand(const RenderOptions& options) {
     } catch (const std::exception& e) {
         return reportError(e, kExitError);
     }
-}
-
-int runRenderCommand(const RunOptions& options) {
-    RunRenderer renderer;
-    const int code = runCommand(options, &renderer);
-    renderer.report();
-    return code;
 }
 
 }  // namespace weir

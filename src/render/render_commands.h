@@ -7,8 +7,9 @@
 namespace weir {
 
 int renderCommand(const RenderOptions& options);
-// `weir run` that also renders every frame to <out>/images/.
-int runRenderCommand(const RunOptions& options);
+// For `weir run --render`: renders every frame to <out>/images/ (or options.outDir) with the
+// options' size, colouring, camera and mode. Throws std::invalid_argument for bad options.
+std::unique_ptr<RunObserver> makeRunRenderer(const RenderOptions& options);
 int viewCommand(const ViewOptions& options);
 
 }  // namespace weir

@@ -303,8 +303,7 @@ void appendSphere(const SphereShape& sphere, std::vector<float>& out) {
     };
     for (int j = 0; j < kStacks; ++j) {
         for (int i = 0; i < kSlices; ++i) {
-            const Vec3d n[4] = {point(i, j), point(i + 1, j), point(i + 1, j + 1),
-                                point(i, j + 1)};
+            const Vec3d n[4] = {point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)};
             for (int k : {0, 1, 2, 0, 2, 3}) {
                 pushVertex(out, sphere.center + n[k] * sphere.radius, n[k]);
             }
@@ -473,8 +472,8 @@ Renderer::Renderer() : gpu_(std::make_unique<Gpu>()) {
 
 Renderer::~Renderer() {
     Gpu& g = *gpu_;
-    for (GLuint program : {g.particleProgram, g.solidProgram, g.waterProgram, g.lineProgram,
-                           g.overlayProgram}) {
+    for (GLuint program :
+         {g.particleProgram, g.solidProgram, g.waterProgram, g.lineProgram, g.overlayProgram}) {
         glDeleteProgram(program);
     }
     glDeleteBuffers(2, g.particleBuffers);
@@ -519,6 +518,7 @@ void Renderer::setParticles(const HostParticles& particles, ColourField field, d
     field_ = field;
     radius_ = radius;
     particleCount_ = n;
+    reserved_ = n;
     glBindBuffer(GL_ARRAY_BUFFER, gpu_->particleBuffers[0]);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(positions.size() * sizeof(float)), positions.data(),
                  GL_STREAM_DRAW);
@@ -526,6 +526,33 @@ void Renderer::setParticles(const HostParticles& particles, ColourField field, d
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(values.size() * sizeof(float)), values.data(),
                  GL_STREAM_DRAW);
     checkGl("particle upload");
+}
+
+std::pair<unsigned, unsigned> Renderer::reserveParticleBuffers(std::size_t n) {
+    if (n != reserved_) {
+        glBindBuffer(GL_ARRAY_BUFFER, gpu_->particleBuffers[0]);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * 3 * sizeof(float)), nullptr, GL_STREAM_DRAW);
+        glBindBuffer(GL_ARRAY_BUFFER, gpu_->particleBuffers[1]);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(float)), nullptr, GL_STREAM_DRAW);
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        checkGl("particle buffer storage");
+        reserved_ = n;
+    }
+    return {gpu_->particleBuffers[0], gpu_->particleBuffers[1]};
+}
+
+void Renderer::setFilledParticles(std::size_t n, ColourField field, double radius) {
+    if (n > reserved_) {
+        throw std::invalid_argument("setFilledParticles: " + std::to_string(n) +
+                                    " particles, but the buffers hold " +
+                                    std::to_string(reserved_));
+    }
+    if (field != field_) {
+        autoRange_ = true;
+    }
+    field_ = field;
+    radius_ = radius;
+    particleCount_ = n;
 }
 
 void Renderer::setColourRange(const ValueRange& range) {
@@ -665,16 +692,14 @@ void Renderer::drawOverlay(int width, int height) {
         const std::string hi = formatValue(range_.hi), lo = formatValue(range_.lo);
         const float gap = float(4 * s);
         addText(hi, x0 - gap - float(textWidth(hi, s)), yHi, kTextColour);
-        addText(lo, x0 - gap - float(textWidth(lo, s)), yLo + float(kGlyphHeight * s),
-                kTextColour);
-        const std::string title = std::string(colourFieldName(field_)) + " " +
-                                  colourFieldUnit(field_);
+        addText(lo, x0 - gap - float(textWidth(lo, s)), yLo + float(kGlyphHeight * s), kTextColour);
+        const std::string title =
+            std::string(colourFieldName(field_)) + " " + colourFieldUnit(field_);
         addText(title, x1 - float(textWidth(title, s)), yHi + float((kGlyphHeight + 6) * s),
                 kTextColour);
     }
     for (std::size_t line = 0; line < overlay_.size(); ++line) {
-        addText(overlay_[line], float(8 * s), h - float(8 * s) - float(line * 10 * s),
-                kTextColour);
+        addText(overlay_[line], float(8 * s), h - float(8 * s) - float(line * 10 * s), kTextColour);
     }
     if (vertices.empty()) {
         return;
@@ -711,7 +736,8 @@ Image Renderer::renderImage(const OrbitCamera& camera, int width, int height) {
     checkGl("reading the image back");
     Image image(width, height);
     for (int y = 0; y < height; ++y) {
-        const std::uint8_t* src = rgba.data() + std::size_t(height - 1 - y) * std::size_t(width) * 4;
+        const std::uint8_t* src =
+            rgba.data() + std::size_t(height - 1 - y) * std::size_t(width) * 4;
         std::uint8_t* dst = image.rgb.data() + std::size_t(y) * std::size_t(width) * 3;
         for (int x = 0; x < width; ++x) {
             dst[3 * x] = src[4 * x];

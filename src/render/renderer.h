@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/camera.h"
@@ -58,6 +59,11 @@ class Renderer {
     void setGeometry(const SceneGeometry& geometry);
     // Uploads positions and the field's values; radius is the sphere drawn per particle (m).
     void setParticles(const HostParticles& particles, ColourField field, double radius);
+    // For filling the particle buffers elsewhere (CUDA-OpenGL interop): sizes the two vertex
+    // buffers for n particles, 3 floats of position and 1 float of value each, and returns their
+    // OpenGL names (positions, values); then setFilledParticles draws what was written there.
+    std::pair<unsigned, unsigned> reserveParticleBuffers(std::size_t n);
+    void setFilledParticles(std::size_t n, ColourField field, double radius);
     // The values mapped to the ends of the colour map. Until it is called (and again after the
     // field changes) each setParticles takes the robust range of its data.
     void setColourRange(const ValueRange& range);
@@ -93,6 +99,7 @@ class Renderer {
     std::vector<std::string> overlay_;
     bool showLegend_ = true;
     int samples_ = 4;
+    std::size_t reserved_ = 0;  // particles the buffers hold room for (reserveParticleBuffers)
 };
 
 // The sphere radius to draw for particles seeded on a lattice: half the spacing, estimated as the

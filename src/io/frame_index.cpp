@@ -1,0 +1,80 @@
+// frames.json parsing and frame reading by extension.
+#include "io/frame_index.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "io/frame_reader.h"
+
+namespace weir {
+
+namespace fs = std::filesystem;
+
+std::vector<FrameEntry> readFrameIndex(const std::string& dir) {
+    const std::string indexPath = (fs::path(dir) / "frames.json").string();
+    if (!fs::is_directory(dir)) {
+        throw IoError("frames directory '" + dir +
+                      "' does not exist (give the output directory of "
+                      "`weir run`, e.g. out/dam_break)");
+    }
+    std::ifstream in(indexPath);
+    if (!in) {
+        throw IoError("cannot read '" + indexPath + "': no such file (is '" + dir +
+                      "' the output directory of `weir run`?)");
+    }
+    nlohmann::json index;
+    try {
+        in >> index;
+    } catch (const nlohmann::json::exception& e) {
+        throw IoError("cannot read '" + indexPath + "': not JSON (" + e.what() + ")");
+    }
+    auto bad = [&](const std::string& field, const std::string& what) {
+        return IoError("frames index '" + indexPath + "': field '" + field + "' " + what);
+    };
+    if (!index.is_object() || !index.contains("frames") || !index["frames"].is_array()) {
+        throw bad("frames", "is missing or not an array");
+    }
+    std::vector<FrameEntry> frames;
+    for (std::size_t i = 0; i < index["frames"].size(); ++i) {
+        const nlohmann::json& entry = index["frames"][i];
+        const std::string at = "frames[" + std::to_string(i) + "]";
+        if (!entry.is_object() || !entry.contains("index") || !entry["index"].is_number_integer() ||
+            entry["index"].get<long long>() < 0 || entry["index"].get<long long>() > 99999999) {
+            throw bad(at + ".index", "is missing or not an integer in 0..99999999");
+        }
+        if (!entry.contains("time") || !entry["time"].is_number()) {
+            throw bad(at + ".time", "is missing or not a number");
+        }
+        if (!entry.contains("file") || !entry["file"].is_string() ||
+            entry["file"].get<std::string>().empty()) {
+            throw bad(at + ".file", "is missing or not a file name");
+        }
+        frames.push_back({entry["index"].get<int>(), entry["time"].get<double>(),
+                          (fs::path(dir) / entry["file"].get<std::string>()).string()});
+    }
+    if (frames.empty()) {
+        throw bad("frames", "lists no frames");
+    }
+    std::sort(frames.begin(), frames.end(),
+              [](const FrameEntry& a, const FrameEntry& b) { return a.index < b.index; });
+    return frames;
+}
+
+HostParticles readFrameFile(const std::string& path) {
+    const std::string extension = fs::path(path).extension().string();
+    if (extension == ".vtu") {
+        return readVtu(path);
+    }
+    if (extension == ".ply") {
+        return readPly(path);
+    }
+    if (extension == ".csv") {
+        return readCsv(path);
+    }
+    throw IoError("cannot read '" + path + "': unknown frame format '" + extension +
+                  "' (allowed: .vtu, .ply, .csv)");
+}
+
+}  // namespace weir

@@ -1,0 +1,312 @@
+// End-to-end tests of `weir render` and `weir run --render` under EGL (Mesa's software renderer
+// where there is no GPU): one PNG per frame, fluid pixels where the particles project, background
+// elsewhere, colours from the map; surface images; bad options refused with the value.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/cli_test_support.h"
+#include "io/frame_reader.h"
+#include "render/camera.h"
+#include "render/colour_map.h"
+#include "render/png_image.h"
+#include "render/renderer.h"
+
+namespace weir {
+namespace {
+
+using namespace cli_testing;
+using Json = nlohmann::json;
+
+// A 6 x 6 x 4 block of particles at 2 cm in a 30 x 20 x 8 cm box: 144 particles.
+constexpr const char* kTinyScene = R"({
+    "name": "tiny",
+    "container": {"min": [0, 0, 0], "max": [0.3, 0.2, 0.08]},
+    "blocks": [{"min": [0, 0, 0], "max": [0.12, 0.12, 0.08]}],
+    "particles": {"spacing": 0.02},
+    "time": {"duration": 1, "frameRate": 30}
+})";
+constexpr int kWidth = 320;
+constexpr int kHeight = 200;
+
+class RenderCli : public Cli {};
+
+int difference(const std::uint8_t* pixel, const Rgb& c) {
+    const float want[3] = {c.r, c.g, c.b};
+    int worst = 0;
+    for (int k = 0; k < 3; ++k) {
+        worst = std::max(worst, std::abs(int(pixel[k]) - int(std::lround(want[k] * 255))));
+    }
+    return worst;
+}
+
+// The smallest difference between a pixel and the lit colour map's shades at t = 0 .. 1: near 0
+// for a sprite's centre.
+// How far (in 8-bit steps) a pixel is from every shade the particle shader can give a colour of
+// the map: base(t) * light + highlight, light in [ambient, ambient + diffuse], highlight in
+// [0, specular] added to each channel alike.
+int distanceToShadedMap(const std::uint8_t* pixel) {
+    const ParticleLighting lighting;
+    double best = 255;
+    for (int i = 0; i <= 255; ++i) {
+        const Rgb c = viridis(i / 255.0);
+        const double base[3] = {c.r * 255.0, c.g * 255.0, c.b * 255.0};
+        for (int l = 0; l <= 60; ++l) {
+            const double light = lighting.ambient + lighting.diffuse * l / 60.0;
+            double residual[3], mean = 0;
+            for (int k = 0; k < 3; ++k) {
+                residual[k] = pixel[k] - base[k] * light;
+                mean += residual[k] / 3;
+            }
+            const double highlight = std::clamp(mean, 0.0, 255.0 * lighting.specular);
+            double worst = 0;
+            for (int k = 0; k < 3; ++k) {
+                worst = std::max(worst, std::abs(residual[k] - highlight));
+            }
+            best = std::min(best, worst);
+        }
+    }
+    return int(std::lround(best));
+}
+
+// Checks one image of particles against where the camera projects them: a pixel at each
+// particle's centre that is not background, background far from every particle (the container's
+// lines and the legend aside), and the particles nearest the camera coloured from the map.
+void expectParticlesWhereTheyProject(const Image& image, const HostParticles& p,
+                                     const OrbitCamera& camera, double radius,
+                                     const PixelRect& keepOut, bool checkMapColour) {
+    std::vector<PixelPoint> centres;
+    std::vector<double> radii;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const Vec3d x(p.x[i], p.y[i], p.z[i]);
+        centres.push_back(projectToPixel(camera, x, image.width, image.height));
+        radii.push_back(projectedRadius(camera, x, radius, image.height));
+        const int px = int(centres.back().x), py = int(centres.back().y);
+        ASSERT_TRUE(px >= 0 && px < image.width && py >= 0 && py < image.height)
+            << "particle " << i;
+        EXPECT_GT(difference(image.pixel(px, py), kBackground), 3)
+            << "particle " << i << " pixel " << px << "," << py << ": "
+            << int(image.pixel(px, py)[0]) << " " << int(image.pixel(px, py)[1]) << " "
+            << int(image.pixel(px, py)[2]);
+    }
+    if (checkMapColour) {
+        // A particle whose centre no nearer particle covers shows a colour of the map there, as
+        // the shader lights it; the container's front edges cross a few.
+        std::size_t visible = 0, mapColoured = 0;
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            bool covered = false;
+            for (std::size_t j = 0; j < p.size() && !covered; ++j) {
+                covered = j != i && centres[j].depth < centres[i].depth &&
+                          std::hypot(centres[j].x - centres[i].x, centres[j].y - centres[i].y) <
+                              radii[j] + 1;
+            }
+            if (!covered) {
+                ++visible;
+                mapColoured +=
+                    distanceToShadedMap(image.pixel(int(centres[i].x), int(centres[i].y))) <= 6;
+            }
+        }
+        EXPECT_GT(visible, p.size() / 10);
+        EXPECT_GE(double(mapColoured), 0.9 * double(visible))
+            << mapColoured << " of " << visible << " visible particles";
+    }
+    std::size_t background = 0, notBackground = 0;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            if (x >= keepOut.left && x < keepOut.right && y >= keepOut.top && y < keepOut.bottom) {
+                continue;
+            }
+            double nearest = INFINITY;
+            for (std::size_t i = 0; i < centres.size(); ++i) {
+                nearest = std::min(
+                    nearest, std::hypot(x + 0.5 - centres[i].x, y + 0.5 - centres[i].y) - radii[i]);
+            }
+            if (nearest > 3) {
+                const bool isBackground = difference(image.pixel(x, y), kBackground) <= 1;
+                background += isBackground;
+                notBackground += !isBackground;
+            }
+        }
+    }
+    // Far from the particles, only the container's thin edges and the text differ.
+    EXPECT_GT(background, 0u);
+    EXPECT_LT(double(notBackground), 0.06 * double(background + notBackground))
+        << notBackground << " pixels away from all particles are not background";
+}
+
+TEST_F(RenderCli, RunRenderWritesOneImagePerFrameShowingTheParticles) {
+    writeFile("tiny.json", kTinyScene);
+    const RunResult run = weir(
+        "run tiny.json --backend cpu --quiet --frames 2 --out frames "
+        "--render --width 320 --height 200 --samples 1");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_TRUE(contains(run.output, "3 images in frames/images/"));
+    EXPECT_EQ(entries(dir_ / "frames" / "images"),
+              (std::vector<std::string>{"frame_00000.png", "frame_00001.png", "frame_00002.png"}));
+    // The camera `weir run --render` uses: framed on the container.
+    const Box container{{0, 0, 0}, {0.3, 0.2, 0.08}};
+    const OrbitCamera camera = frameBox(container, double(kWidth) / kHeight);
+    const PixelRect legend = legendBarRect(kWidth, kHeight);
+    // Legend bar, its labels and title on the right; the overlay text is off for images.
+    const PixelRect keepOut{legend.left - 60, legend.top - 30, kWidth, legend.bottom + 20};
+    for (int frame = 0; frame <= 2; ++frame) {
+        const std::string name = "frame_0000" + std::to_string(frame);
+        const Image image = readPng(path("frames/images/" + name + ".png"));
+        ASSERT_EQ(image.width, kWidth);
+        ASSERT_EQ(image.height, kHeight);
+        const HostParticles particles = readVtu(path("frames/" + name + ".vtu"));
+        SCOPED_TRACE(name);
+        expectParticlesWhereTheyProject(image, particles, camera, 0.01, keepOut, true);
+    }
+    // Frame 0 is at rest: speed 0 everywhere, the bottom of the map, so the particles facing the
+    // camera show viridis(0) lit.
+    const Image first = readPng(path("frames/images/frame_00000.png"));
+    const HostParticles p0 = readVtu(path("frames/frame_00000.vtu"));
+    std::size_t darkPurple = 0;
+    for (std::size_t i = 0; i < p0.size(); ++i) {
+        const PixelPoint c =
+            projectToPixel(camera, Vec3d(p0.x[i], p0.y[i], p0.z[i]), kWidth, kHeight);
+        darkPurple +=
+            difference(first.pixel(int(c.x), int(c.y)), particleCentreColour(viridis(0))) <= 10;
+    }
+    EXPECT_GT(darkPurple, p0.size() / 2);
+}
+
+TEST_F(RenderCli, RenderCommandUsesTheCameraAndColouringOfItsFlags) {
+    writeFile("tiny.json", kTinyScene);
+    ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 3 --out frames").exitCode, 0);
+    const RunResult render = weir(
+        "render frames --width 320 --height 200 --samples 1 --scene tiny.json "
+        "--camera -30,35,0.9 --target 0.1,0.05,0.04 --color density --out pictures");
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    EXPECT_TRUE(contains(render.output, "4 images in pictures/"));
+    EXPECT_TRUE(contains(render.output, "density"));
+    OrbitCamera camera;
+    camera.yaw = -30;
+    camera.pitch = 35;
+    camera.distance = 0.9;
+    camera.target = Vec3d(0.1, 0.05, 0.04);
+    const PixelRect legend = legendBarRect(kWidth, kHeight);
+    const PixelRect keepOut{legend.left - 70, legend.top - 30, kWidth, legend.bottom + 20};
+    for (int frame : {0, 3}) {
+        const std::string name = "frame_0000" + std::to_string(frame);
+        const Image image = readPng(path("pictures/" + name + ".png"));
+        const HostParticles particles = readVtu(path("frames/" + name + ".vtu"));
+        SCOPED_TRACE(name);
+        expectParticlesWhereTheyProject(image, particles, camera, 0.01, keepOut, true);
+    }
+    // The legend bar runs through the map from bottom to top.
+    const Image image = readPng(path("pictures/frame_00000.png"));
+    const int x = (legend.left + legend.right) / 2;
+    EXPECT_LE(difference(image.pixel(x, legend.bottom - 2), viridis(0)), 10);
+    EXPECT_LE(difference(image.pixel(x, legend.top + 1), viridis(1)), 10);
+}
+
+TEST_F(RenderCli, RenderSurfaceDrawsWaterOverTheFluid) {
+    writeFile("tiny.json", kTinyScene);
+    ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 0 --out frames").exitCode, 0);
+    const RunResult render = weir(
+        "render frames --surface --width 320 --height 200 --samples 1 --scene tiny.json "
+        "--backend cpu --quiet");
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    EXPECT_TRUE(contains(render.output, "ms per surface on cpu"));
+    const Image image = readPng(path("frames/images/frame_00000.png"));
+    const OrbitCamera camera = frameBox({{0, 0, 0}, {0.3, 0.2, 0.08}}, double(kWidth) / kHeight);
+    // The centre of the block's front face is water: blue above red and green.
+    const PixelPoint face = projectToPixel(camera, Vec3d(0.06, 0.06, 0.08), kWidth, kHeight);
+    const std::uint8_t* px = image.pixel(int(face.x), int(face.y));
+    EXPECT_GT(px[2], px[0] + 40) << int(px[0]) << " " << int(px[1]) << " " << int(px[2]);
+    EXPECT_GT(px[2], px[1]);
+    // The far end of the container holds no fluid: background there (off the container edges).
+    const PixelPoint empty = projectToPixel(camera, Vec3d(0.25, 0.1, 0.04), kWidth, kHeight);
+    EXPECT_LE(difference(image.pixel(int(empty.x), int(empty.y)), kBackground), 1);
+}
+
+TEST_F(RenderCli, ParticleSpacingComesFromTheSceneForAnyFirstFrame) {
+    writeFile("tiny.json", kTinyScene);
+    ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 8 --out frames").exitCode, 0);
+    // Keep only the last frame in the index: the fluid has moved, its particles no longer sit on
+    // the 2 cm lattice.
+    Json index = Json::parse(fileText(dir_ / "frames" / "frames.json"));
+    index["frames"] = Json::array({index["frames"].back()});
+    writeFile("frames/frames.json", index.dump());
+    const RunResult withScene =
+        weir("render frames --width 64 --height 48 --samples 1 --scene tiny.json");
+    ASSERT_EQ(withScene.exitCode, 0) << withScene.output;
+    EXPECT_TRUE(contains(withScene.output, "particle spacing 0.02 m"));
+    const RunResult given =
+        weir("render frames --width 64 --height 48 --samples 1 --spacing 0.025");
+    ASSERT_EQ(given.exitCode, 0) << given.output;
+    EXPECT_TRUE(contains(given.output, "particle spacing 0.025 m"));
+}
+
+TEST_F(RenderCli, VideoIsEncodedWithFfmpeg) {
+    if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
+        GTEST_SKIP() << "ffmpeg is not installed (Debian: apt-get install ffmpeg)";
+    }
+    writeFile("tiny.json", kTinyScene);
+    ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 4 --out frames").exitCode, 0);
+    const RunResult render =
+        weir("render frames --width 160 --height 100 --samples 1 --quiet --video films/tiny.mp4");
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    EXPECT_TRUE(contains(render.output, "video films/tiny.mp4 (H.264, 30 frames/s)"));
+    // An MP4 (an 'ftyp' box first) and nothing else in its directory: the temporary is renamed.
+    EXPECT_EQ(entries(dir_ / "films"), std::vector<std::string>{"tiny.mp4"});
+    const std::string video = fileText(dir_ / "films" / "tiny.mp4");
+    ASSERT_GT(video.size(), 1000u);
+    EXPECT_EQ(video.substr(4, 4), "ftyp");
+    // ffmpeg reads it back as 5 frames of 160 x 100.
+    const RunResult probe = shell(
+        "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+        "stream=width,height,nb_read_frames -of csv=p=0 films/tiny.mp4");
+    if (probe.exitCode == 0) {
+        EXPECT_TRUE(contains(probe.output, "160,100,5")) << probe.output;
+    }
+}
+
+TEST_F(RenderCli, BadInputIsRefusedWithTheValue) {
+    const RunResult missing = weir("render nowhere");
+    EXPECT_EQ(missing.exitCode, 1) << missing.output;
+    EXPECT_TRUE(contains(missing.output, "'nowhere'"));
+
+    writeFile("tiny.json", kTinyScene);
+    ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 0 --out frames").exitCode, 0);
+    const RunResult colour = weir("render frames --color temperature");
+    EXPECT_EQ(colour.exitCode, 2) << colour.output;
+    EXPECT_TRUE(contains(colour.output, "temperature"));
+    EXPECT_TRUE(contains(colour.output, "speed"));
+
+    const RunResult camera = weir("render frames --camera 10,95,1");
+    EXPECT_EQ(camera.exitCode, 2) << camera.output;
+    EXPECT_TRUE(contains(camera.output, "--camera '10,95,1'"));
+
+    const RunResult video = weir("render frames --video film.avi");
+    EXPECT_EQ(video.exitCode, 2) << video.output;
+    EXPECT_TRUE(contains(video.output, "film.avi"));
+    EXPECT_TRUE(contains(video.output, ".mp4"));
+
+    const RunResult size = weir("render frames --width 8");
+    EXPECT_EQ(size.exitCode, 2) << size.output;
+    EXPECT_TRUE(contains(size.output, "--width"));
+
+    const RunResult surfaceOnly = weir("run tiny.json --frames 0 --surface");
+    EXPECT_EQ(surfaceOnly.exitCode, 2) << surfaceOnly.output;
+    EXPECT_TRUE(contains(surfaceOnly.output, "--render"));
+
+    EXPECT_FALSE(fs::exists(dir_ / "frames" / "images" / "frame_00000.png"));
+
+    const RunResult help = weir("render --help");
+    EXPECT_EQ(help.exitCode, 0);
+    for (const char* option : {"--width", "--height", "--color", "--camera", "--target", "--scene",
+                               "--surface", "--video"}) {
+        EXPECT_TRUE(contains(help.output, option));
+    }
+}
+
+}  // namespace
+}  // namespace weir
