@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # One device-machine session: build for the GPU, run every test, time the dam break, run weir
 # bench and the GPU reference step side by side, and collect logs and results under $OUT (or
-# ./gpu-out). PARTS picks what runs (default: all of "build test runs bench reference"), so a
-# long session can be split over calls that reuse the build.
+# ./gpu-out). PARTS picks what runs (default: all of "build test runs bench reference"; "huge"
+# adds the largest dam break, HUGE particles, 1B by default), so a long session can be split over
+# calls that reuse the build.
 # Usage: PARTS="build test" bash bench/gpu_run.sh [sizes] [reference-dir]
 set -uo pipefail
 out=$(realpath -m "${OUT:-gpu-out}")
@@ -39,6 +40,12 @@ fi
 if has bench; then
     ./build-gpu/weir bench --sizes "$sizes" --steps 20 --budget "${BUDGET:-30}" -o "$out/bench" \
         2>&1 | tee "$out/bench.txt"
+fi
+if has huge; then
+    # The largest dam break: seeded on the GPU, timed from the lattice, no frames written.
+    nvidia-smi --query-gpu=memory.used,memory.total --format=csv | tee "$out/huge-memory-before.txt"
+    ./build-gpu/weir bench --backends cuda-dense --sizes "${HUGE:-1B}" --steps 10 --warmup 2 \
+        --budget 300 --no-plot -o "$out/huge" 2>&1 | tee "$out/huge.txt"
 fi
 if has reference && [ -d "$reference" ]; then
     bash "$reference/run.sh" 100000 1000000 10000000 2>&1 | tee "$out/reference.txt"
