@@ -34,6 +34,9 @@ def main(path):
 
         for stage, title in ROWS:
             print(f"| {title} | " + " | ".join(cell(c, stage=stage) for c in cols) + " |")
+        if "pointSpriteMs" in run:
+            print("| Point sprite rendering (1280x720, same for every column) | " +
+                  " | ".join(f"{run['pointSpriteMs']:.4g}" for c in cols) + " |")
         print("| **Total** (sum of stage medians) | " + " | ".join(cell(c, "totalMs") for c in cols) + " |")
         print("| Full step, no events (median) | " + " | ".join(cell(c, "stepMs") for c in cols) + " |")
         base = run["columns"].get("cpu-brute", {}).get("totalMs")

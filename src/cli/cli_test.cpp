@@ -1,6 +1,7 @@
 // End-to-end tests of the weir binary: usage, info, runs that write frames in each format,
 // bad scenes, a blow-up, --explain and brute-force neighbours. Every run is tiny and on the CPU.
 #include <gtest/gtest.h>
+#include <omp.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -443,6 +444,11 @@ TEST_F(Cli, BenchTimesEveryStageOfEveryColumn) {
     ASSERT_EQ(record["runs"].size(), 2u);
     for (const auto& r : record["runs"]) {
         EXPECT_GT(r["neighboursPerParticle"].get<double>(), 5.0);
+#if defined(WEIR_HAS_RENDER)
+        // The paper's point-sprite row, drawn offscreen (Mesa's software renderer in CI).
+        ASSERT_TRUE(r.contains("pointSpriteMs")) << run.output;
+        EXPECT_GT(r["pointSpriteMs"].get<double>(), 0.0);
+#endif
         for (const char* column : {"cpu-brute", "cpu-grid", "cpu-dense"}) {
             const auto& c = r["columns"][column];
             ASSERT_FALSE(c.contains("skipped")) << column;
@@ -460,6 +466,8 @@ TEST_F(Cli, BenchTimesEveryStageOfEveryColumn) {
                 EXPECT_GT(c["stepMs"].get<double>(), 0.0) << column;
             }
             EXPECT_GT(c["totalMs"].get<double>(), 0.0) << column;
+            EXPECT_GT(c["particleStepsPerSecond"].get<double>(), 0.0) << column;
+            EXPECT_EQ(c["threads"].get<int>(), omp_get_max_threads()) << column;
         }
     }
     EXPECT_TRUE(fs::exists(path("b/bench.csv")));

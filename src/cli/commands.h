@@ -39,6 +39,7 @@ struct BenchOptions {
     double budget = 60;             // seconds per (size, column); longer runs are skipped
     std::string outDir = "bench-out";
     bool noPlot = false;
+    bool noRender = false;  // skip the point-sprite rendering row
 };
 
 // `weir render` and `weir view` (src/render/, built when its libraries are found).
@@ -129,7 +130,19 @@ int meshCommand(const MeshOptions& options);
 // `weir run --mesh`: writes <out>/mesh/surface_NNNNN.{obj,ply} for every frame. Throws
 // std::invalid_argument for bad options.
 std::unique_ptr<RunObserver> makeRunMesher(const MeshOptions& options);
-int benchCommand(const BenchOptions& options);
+// Times drawing particles as point sprites, for weir bench's rendering row (paper Tables 1-3);
+// made by src/render/ where rendering is built.
+class SpriteDrawTimer {
+   public:
+    virtual ~SpriteDrawTimer() = default;
+    // Median ms to upload the particles and draw them as shaded sprites into a 1280 x 720
+    // offscreen image, waiting for the GPU (no read-back).
+    virtual double medianDrawMs(const Scene& scene, const HostParticles& particles,
+                                double radius) = 0;
+    virtual std::string description() const = 0;
+};
+
+int benchCommand(const BenchOptions& options, SpriteDrawTimer* spriteTimer = nullptr);
 int infoCommand();
 
 }  // namespace weir

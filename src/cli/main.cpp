@@ -7,6 +7,7 @@
 #include "scene/scene.h"
 #if defined(WEIR_HAS_RENDER)
 #include "render/render_commands.h"
+#include "render/sprite_timer.h"
 #endif
 
 namespace {
@@ -118,6 +119,8 @@ int main(int argc, char** argv) {
     benchCmd->add_option("--out,-o", bench.outDir, "Directory for bench.json, bench.csv, bench.png")
         ->capture_default_str();
     benchCmd->add_flag("--no-plot", bench.noPlot, "Skip the PNG plot");
+    benchCmd->add_flag("--no-render", bench.noRender,
+                       "Skip the point-sprite rendering row (drawn offscreen with OpenGL)");
 
     RenderOptions render;
     CLI::App* renderCmd = app.add_subcommand(
@@ -268,7 +271,18 @@ int main(int argc, char** argv) {
         return meshCommand(mesh);
     }
     if (benchCmd->parsed()) {
-        return benchCommand(bench);
+        std::unique_ptr<SpriteDrawTimer> spriteTimer;
+#if defined(WEIR_HAS_RENDER)
+        if (!bench.noRender) {
+            try {
+                spriteTimer = makeSpriteDrawTimer();
+            } catch (const std::exception& e) {
+                std::cerr << "weir bench: no point-sprite row, no OpenGL context: " << e.what()
+                          << "\n";
+            }
+        }
+#endif
+        return benchCommand(bench, spriteTimer.get());
     }
     return infoCommand();
 }

@@ -716,6 +716,16 @@ void Renderer::drawOverlay(int width, int height) {
     glEnable(GL_DEPTH_TEST);
 }
 
+void Renderer::drawOffscreenAndWait(const OrbitCamera& camera, int width, int height) {
+    Gpu& g = *gpu_;
+    g.ensureFramebuffers(width, height, std::max(samples_, 1));
+    glBindFramebuffer(GL_FRAMEBUFFER, g.drawFbo);
+    draw(camera, width, height);
+    glFinish();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    checkGl("drawing offscreen");
+}
+
 Image Renderer::renderImage(const OrbitCamera& camera, int width, int height) {
     if (width < 16 || height < 16 || width > 16384 || height > 16384) {
         throw std::invalid_argument("image size " + std::to_string(width) + "x" +

@@ -80,6 +80,9 @@ class Renderer {
 
     // Draws into the bound framebuffer, whose size is width x height.
     void draw(const OrbitCamera& camera, int width, int height);
+    // Draws into the offscreen framebuffer and waits for the GPU to finish, without reading the
+    // image back: the cost of a frame's drawing alone.
+    void drawOffscreenAndWait(const OrbitCamera& camera, int width, int height);
     // Draws into an offscreen framebuffer and reads the image back.
     Image renderImage(const OrbitCamera& camera, int width, int height);
 
