@@ -38,7 +38,9 @@ if has runs; then
     done | tee "$out/runs.txt"
 fi
 if has bench; then
-    ./build-gpu/weir bench --sizes "$sizes" --steps 20 --budget "${BUDGET:-30}" -o "$out/bench" \
+    # BENCH_WEIR: a binary with rendering built in (build-kit/weir with the GL runtime of
+    # bench/gpu_render.sh unpacked) adds the point-sprite row.
+    "${BENCH_WEIR:-./build-gpu/weir}" bench --sizes "$sizes" --steps 20 --budget "${BUDGET:-30}" -o "$out/bench" \
         2>&1 | tee "$out/bench.txt"
 fi
 if has huge; then
