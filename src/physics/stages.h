@@ -9,6 +9,7 @@
 #include "physics/eos.h"
 #include "physics/kernels.h"
 #include "physics/sph_params.h"
+#include "physics/time_step.h"
 
 namespace weir {
 
@@ -49,6 +50,7 @@ struct FaultRecord {
     int step;      // step number at which it happened
     int particle;  // index in cell order at that step
     float value;   // speed, for TooFast
+    float time;    // simulated time at the end of that step, s
 };
 
 WEIR_HD inline bool claimFault(FaultRecord* record, FaultCode code) {
@@ -178,12 +180,13 @@ WEIR_HD inline void collide(Vec3& x, Vec3& v, const SphParams& params,
     }
 }
 
-// Time integration of one particle (semi-implicit Euler by default; the paper's explicit Euler
-// selectable), collision response, and the blow-up checks; updates x and v in place.
+// Time integration of one particle over the clock's dt (semi-implicit Euler by default; the
+// paper's explicit Euler selectable), collision response, the blow-up checks, and the largest
+// speed and acceleration for the next step's dt; updates x and v in place.
 WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
                                     const SphParams& params, const ObstacleView& obstacles,
-                                    FaultRecord* fault, int step) {
-    const Real dt = params.timeStep;
+                                    FaultRecord* fault, StepClock* clock) {
+    const Real dt = clock->dt;
     if (params.integrator == IntegratorKind::SemiImplicitEuler) {
         v += a * dt;
         x += v * dt;
@@ -194,6 +197,8 @@ WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
     collide(x, v, params, obstacles);
 
     const Real speed2 = lengthSquared(v);
+    recordMax(&clock->maxSpeed2, speed2);
+    recordMax(&clock->maxAccel2, lengthSquared(a));
     const bool finite =
         std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(speed2);
     FaultCode code = FaultCode::None;
@@ -206,17 +211,19 @@ WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
         code = FaultCode::Escaped;
     }
     if (code != FaultCode::None && claimFault(fault, code)) {
-        fault->step = step;
+        fault->step = clock->step;
         fault->particle = i;
         fault->value = float(std::sqrt(speed2));
+        fault->time = float(clock->time + double(dt));
     }
 }
 
 // The paper's displacement stage: integrates particle i with the acceleration of the force stage.
 WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams& params,
-                                const ObstacleView& obstacles, FaultRecord* fault, int step) {
+                                const ObstacleView& obstacles, FaultRecord* fault,
+                                StepClock* clock) {
     Vec3 x = pv.position(i), v = pv.velocity(i);
-    advanceParticle(x, v, pv.acc[i].xyz(), i, params, obstacles, fault, step);
+    advanceParticle(x, v, pv.acc[i].xyz(), i, params, obstacles, fault, clock);
     pv.pos[i] = Real4::from(x);
     pv.vel[i] = Real4::from(v, pv.vel[i].w);  // keeps the step's density for output
 }
@@ -227,12 +234,17 @@ WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams
 template <class Neighbours>
 WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                              const SphParams& params, const ObstacleView& obstacles,
-                                             FaultRecord* fault, int step, Real4* newPos,
-                                             Real4* newVel) {
-    const Vec3 a = accelerationOf(i, pv, nb, params);
+                                             FaultRecord* fault, StepClock* clock,
+                                             Real4* newPos, Real4* newVel) {
     const Real4 v4 = pv.vel[i];
+    if (clock->dt == Real(0)) {  // a no-op step past the output time: state carried over
+        newPos[i] = pv.pos[i];
+        newVel[i] = v4;
+        return;
+    }
+    const Vec3 a = accelerationOf(i, pv, nb, params);
     Vec3 x = pv.position(i), v = v4.xyz();
-    advanceParticle(x, v, a, i, params, obstacles, fault, step);
+    advanceParticle(x, v, a, i, params, obstacles, fault, clock);
     newPos[i] = Real4::from(x);
     newVel[i] = Real4::from(v, v4.w);
 }
