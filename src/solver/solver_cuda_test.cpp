@@ -55,6 +55,35 @@ TEST_P(CudaModes, GridAndBruteForceAgree) {
     EXPECT_LT(maxPositionDifference(a, b), 1e-4 * report.spacing);
 }
 
+// The device-side time step and Tait's equation: the GPU picks the same steps (to rounding) and
+// lands on the same frame times as the CPU.
+TEST_P(CudaModes, TaitAndAdaptiveStepsAgreeWithCpu) {
+    SKIP_WITHOUT_GPU();
+    Scene scene = smallDamBreak(4000);
+    scene.eos = EquationOfState::Tait;
+    SetupReport report;
+    auto cpu = start(scene, Backend::Cpu, GetParam(), &report);
+    auto gpu = start(scene, Backend::Cuda, GetParam());
+    ASSERT_TRUE(gpu->params().adaptiveTimeStep);
+    for (int frame = 1; frame <= 4; ++frame) {
+        cpu->advanceTo(frame / 60.0);
+        gpu->advanceTo(frame / 60.0);
+        EXPECT_EQ(gpu->time(), frame / 60.0);
+    }
+    ASSERT_EQ(gpu->fault().code, 0);
+    EXPECT_NEAR(double(gpu->stepCount()), double(cpu->stepCount()), 0.02 * cpu->stepCount() + 1);
+    HostParticles a, b;
+    cpu->download(a);
+    gpu->download(b);
+    double sumSquares = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        sumSquares += lengthSquared(Vec3d(a.x[i] - b.x[i], a.y[i] - b.y[i], a.z[i] - b.z[i]));
+    }
+    EXPECT_LT(std::sqrt(sumSquares / double(a.size())), 0.002 * report.spacing);
+    EXPECT_NEAR(meanDensity(a), meanDensity(b), 1e-4 * scene.restDensity);
+    EXPECT_GT(maxSpeed(b), 0.3);
+}
+
 INSTANTIATE_TEST_SUITE_P(Tables, CudaModes,
                          ::testing::Values(NeighbourMode::Grid, NeighbourMode::Dense));
 
