@@ -12,6 +12,7 @@ constexpr int kExitOk = 0;
 constexpr int kExitError = 1;     // bad scene, I/O failure, not enough memory
 constexpr int kExitUsage = 2;     // bad command-line arguments
 constexpr int kExitBlowUp = 3;    // the simulation blew up; frames already written stay
+constexpr int kExitValidationFailed = 4;  // weir validate: a check missed its tolerance
 
 struct RunOptions {
     std::string scene;  // file path or built-in name; empty: the built-in dam break
@@ -35,6 +36,15 @@ struct BenchOptions {
     double settle = 0.1;                 // simulated seconds before timing: a fluid in motion
     double budget = 60;                  // seconds per (size, column); longer runs are skipped
     std::string outDir = "bench-out";
+    bool noPlot = false;
+};
+
+struct ValidateOptions {
+    std::string backend = "auto";
+    int tankResolution = 15;    // particles over the tank's water depth
+    int columnResolution = 12;  // particles across the dam-break column
+    double damEndT = 5.0;       // dimensionless end time T = t sqrt(2 g / a)
+    std::string outDir = "validate-out";
     bool noPlot = false;
 };
 
@@ -86,5 +96,6 @@ Scene resolveScene(const std::string& spec);
 int runCommand(const RunOptions& options, RunObserver* observer = nullptr);
 int benchCommand(const BenchOptions& options);
 int infoCommand();
+int validateCommand(const ValidateOptions& options);
 
 }  // namespace weir

@@ -13,6 +13,9 @@ enum class IntegratorKind : int { SemiImplicitEuler = 0, ExplicitEuler = 1 };
 enum class EosKind : int { Linear = 0, Tait = 1 };
 // Simple: the paper's collision response at the walls. Particles: Akinci et al. 2012 boundary
 // particles that add to density and pressure force (the simple response stays as a safety net).
+// Pressure force: Symmetric, m_j (p_i / rho_i^2 + p_j / rho_j^2) (consistent: tends to grad p),
+// or the paper's eq. 4, m_j (p_i + p_j) / (2 rho_j) (tends to grad p / 2). physics/stages.h.
+enum class PressureForm : int { Symmetric = 0, Paper = 1 };
 enum class WallKind : int { Simple = 0, Particles = 1 };
 
 struct SphParams {
@@ -21,6 +24,7 @@ struct SphParams {
     Real restDensity = 0;               // rho0, kg/m^3
     Real invRestDensity = 0;            // 1 / rho0
     EosKind eos = EosKind::Linear;
+    PressureForm pressureForce = PressureForm::Symmetric;
     Real stiffness = 0;                 // k of eq. 3, m^2/s^2 (= c^2)
     Real taitB = 0;                     // B of Tait's equation, Pa (= rho0 c^2 / 7)
     Real negativePressureScale = 0;     // share of negative pressure kept: 0 clamps, 1 keeps

@@ -6,6 +6,7 @@
 
 #include "core/config.h"
 #include "core/vec3.h"
+#include "physics/boundary.h"
 #include "physics/eos.h"
 #include "physics/kernels.h"
 #include "physics/sph_params.h"
@@ -23,6 +24,7 @@ struct ParticleView {
     Real4* vel;  // vx, vy, vz, density
     Real4* acc;  // ax, ay, az, unused
     Index count;
+    BoundaryView boundary;  // static wall particles (physics/boundary.h); empty: none
 
     WEIR_HD Real density(Index i) const { return vel[i].w; }
     WEIR_HD Vec3 position(Index i) const { return pos[i].xyz(); }
@@ -71,16 +73,23 @@ WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Nei
     Real sum = 0;
     nb.forEachCandidate(
         i, [&](Index j) { sum += poly6(params.kernel, lengthSquared(xi - pv.position(j))); });
-    pv.vel[i].w = params.mass * sum;
+    pv.vel[i].w = params.mass * sum + boundaryDensity(pv.boundary, params.kernel, xi);
 }
 
-// Eq. 4 (pressure, spiky gradient) and eq. 5 (viscosity, its Laplacian) between i and j:
-// the force density on i, for r_vec = x_i - x_j and 0 < r < h.
+// The pressure (spiky gradient) and viscous (eq. 5, its Laplacian) force density on i from j,
+// for r_vec = x_i - x_j and 0 < r < h. Pressure by the paper's eq. 4, m_j (p_i + p_j) / (2 rho_j),
+// or by the symmetric form rho_i m_j (p_i / rho_i^2 + p_j / rho_j^2) (Monaghan 1992): both
+// conserve momentum, but only the latter tends to grad p as particles get finer; eq. 4 tends to
+// grad p / 2 (its p_i term vanishes over a full neighbourhood), so a tank at rest under eq. 4
+// holds twice the hydrostatic pressure. piOverRhoi2Rhoi = p_i / rho_i; rhoi for the symmetric form.
 WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r, Real invR, Real pi,
-                              Real pj, Real rhoj, const Vec3& vi, const Vec3& vj) {
-    const Real massOverRho = params.mass / rhoj;
-    Real pressure =
-        -massOverRho * Real(0.5) * (pi + pj) * spikyGradientFactor(params.kernel, r, invR);
+                              Real pj, Real rhoi, Real rhoj, const Vec3& vi, const Vec3& vj) {
+    const Real invRhoj = Real(1) / rhoj;
+    const Real massOverRho = params.mass * invRhoj;
+    const Real pressureSum = params.pressureForce == PressureForm::Symmetric
+                                 ? rhoi * (pi / (rhoi * rhoi) + pj * invRhoj * invRhoj) * rhoj
+                                 : Real(0.5) * (pi + pj);
+    Real pressure = -massOverRho * pressureSum * spikyGradientFactor(params.kernel, r, invR);
     Real viscous = params.viscosity * massOverRho * viscosityLaplacian(params.kernel, r);
     return rVec * pressure + (vj - vi) * viscous;
 }
@@ -100,10 +109,12 @@ WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighb
             const Real4 vj = pv.vel[j];
             const Real invR = reciprocalSqrt(r2);
             force += pairForce(params, rVec, r2 * invR, invR, pi, pressureFromDensity(params, vj.w),
-                               vj.w, vi.xyz(), vj.xyz());
+                               rhoi, vj.w, vi.xyz(), vj.xyz());
         }
     });
-    return force / rhoi + params.gravity;
+    return force / rhoi + params.gravity +
+           boundaryAcceleration(pv.boundary, params.kernel, xi, vi.xyz(), rhoi, pi,
+                                params.wallViscosity, params.invRestDensity);
 }
 
 template <class Neighbours>

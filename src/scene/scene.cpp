@@ -391,7 +391,7 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
 
     FieldReader fluid =
         top.object("fluid", {"preset", "restDensity", "viscosity", "stiffness", "eos",
-                             "clampNegativePressure", "negativePressureScale"});
+                             "pressureForce", "clampNegativePressure", "negativePressureScale"});
     scene.preset = fluid.string("preset", "");
     if (!scene.preset.empty()) {
         const FluidPreset* preset = fluidPreset(scene.preset);
@@ -413,6 +413,13 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     } else {
         fluid.fail(fluid.pathOf("eos"), fluid.written("eos"),
                    "\"linear\" (the paper's eq. 3) or \"tait\" (gamma = 7)");
+    }
+    std::string pressureForce = fluid.string("pressureForce", "symmetric");
+    if (pressureForce == "symmetric" || pressureForce == "paper") {
+        scene.paperPressureForce = pressureForce == "paper";
+    } else {
+        fluid.fail(fluid.pathOf("pressureForce"), fluid.written("pressureForce"),
+                   "\"symmetric\" (m (p_i / rho_i^2 + p_j / rho_j^2)) or \"paper\" (eq. 4)");
     }
     scene.clampNegativePressure =
         fluid.boolean("clampNegativePressure", scene.clampNegativePressure);

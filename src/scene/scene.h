@@ -83,6 +83,8 @@ struct Scene {
         viscosity;  // "viscosity", dynamic mu of eq. 5, Pa s, >= 0; unset: derived
     double physicalViscosity = 0;  // the preset's mu, added to the derived artificial one
     EquationOfState eos = EquationOfState::Linear;  // "eos": "linear" (eq. 3) | "tait"
+    // "pressureForce": "symmetric" (Monaghan: tends to grad p) | "paper" (eq. 4: grad p / 2)
+    bool paperPressureForce = false;
     // "negativePressureScale" in [0, 1]: share of negative pressure kept (0 clamps, 1 keeps);
     // "clampNegativePressure": true is 0, false is 1.
     double negativePressureScale = 0;

@@ -7,6 +7,7 @@
 
 #include "grid/cell_id.h"
 #include "physics/kernels.h"
+#include "scene/boundary.h"
 
 namespace weir {
 
@@ -29,6 +30,11 @@ bool insideObstacle(const Scene& scene, const Vec3d& p) {
     }
     for (const SphereShape& s : scene.obstacleSpheres) {
         if (insideSphere(p, s)) {
+            return true;
+        }
+    }
+    for (const MeshObstacle& m : scene.obstacleMeshes) {
+        if (insideMesh(m, p)) {
             return true;
         }
     }
@@ -257,6 +263,12 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     } else {
         say("pressure P = k (rho - rho0): the paper's eq. 3");
     }
+    say(scene.paperPressureForce
+            ? "pressure force by the paper's eq. 4, m_j (p_i + p_j) / (2 rho_j): it tends to "
+              "grad p / 2, so pressures at rest read twice hydrostatic"
+            : "pressure force m_j (p_i / rho_i^2 + p_j / rho_j^2) grad W (symmetric, Monaghan "
+              "1992): conserves momentum and tends to grad p, so pressures are hydrostatic at "
+              "rest (the paper's eq. 4 tends to grad p / 2)");
     if (scene.negativePressureScale == 0) {
         say("negative pressure clamped to 0: surface particles lack neighbours, read light and "
             "would pull into clumps");
@@ -349,6 +361,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     p.restDensity = Real(scene.restDensity);
     p.invRestDensity = Real(1.0 / scene.restDensity);
     p.eos = scene.eos == EquationOfState::Tait ? EosKind::Tait : EosKind::Linear;
+    p.pressureForce = scene.paperPressureForce ? PressureForm::Paper : PressureForm::Symmetric;
     p.stiffness = Real(stiffness);
     p.taitB = Real(taitB);
     p.negativePressureScale = Real(scene.negativePressureScale);
@@ -389,6 +402,30 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     }
     for (const SphereShape& s : scene.obstacleSpheres) {
         setup.obstacleSpheres.push_back({Vec3(s.center), Real(s.radius)});
+    }
+    if (scene.walls == WallModel::Particles) {
+        setup.boundary = buildBoundary(sampleBoundary(scene, d, h), scene.container, h,
+                                       scene.restDensity, mass / scene.restDensity);
+        p.walls = WallKind::Particles;
+        p.wallViscosity = Real(scene.wallFriction * viscosity);
+        double psiMin = 1e300, psiMax = 0;
+        for (const Real4& b : setup.boundary.pos) {
+            psiMin = std::min(psiMin, double(b.w));
+            psiMax = std::max(psiMax, double(b.w));
+        }
+        say("walls: " + std::to_string(setup.boundary.size()) +
+            " boundary particles (Akinci et al. 2012) at spacing d in " +
+            std::to_string(boundaryLayers(h, d)) +
+            " layer(s) from d/2 behind each wall and obstacle surface; volume psi = rho0 / sum W "
+            "over boundary neighbours, capped at a full neighbourhood's, " +
+            fmt(psiMin / (scene.restDensity * d * d * d)) + " to " +
+            fmt(psiMax / (scene.restDensity * d * d * d)) +
+            " x rho0 d^3; they add to density and push by the fluid's own pressure" +
+            (scene.wallFriction > 0 ? "; friction mu = " + fmt(scene.wallFriction * viscosity)
+                                    : "; free slip (walls.friction 0)"));
+    } else {
+        say("walls: the paper's simple collision response (restitution " +
+            fmt(scene.wallRestitution) + ", friction " + fmt(scene.wallFriction) + ")");
     }
     say(std::to_string(setup.particles.size()) + " particles, grid " +
         std::to_string(setup.grid.dims[0]) + " x " + std::to_string(setup.grid.dims[1]) + " x " +

@@ -9,6 +9,7 @@
 #include "core/backend.h"
 #include "core/stage_timer.h"
 #include "grid/cell_id.h"
+#include "physics/boundary.h"
 #include "physics/sph_params.h"
 #include "physics/stages.h"
 #include "solver/particles.h"
@@ -31,6 +32,7 @@ struct SimulationSetup {
     GridSpec grid;
     std::vector<ObstacleBox> obstacleBoxes;
     std::vector<ObstacleSphere> obstacleSpheres;
+    BoundaryParticles boundary;  // walls.model "particles": static wall particles and their grid
     HostParticles particles;
 };
 

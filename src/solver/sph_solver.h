@@ -51,6 +51,18 @@ class SphSolver final : public Simulation {
             sortedVel_.resize(n_);
             sortedId_.resize(n_);
         }
+        const BoundaryParticles& walls = setup.boundary;
+        if (walls.size() > 0) {
+            exec_.upload(boundaryPos_, walls.pos.data(), walls.pos.size());
+            exec_.upload(boundaryStart_, walls.cellStart.data(), walls.cellStart.size());
+            exec_.upload(boundaryNear_, walls.near.data(), walls.near.size());
+            boundary_.origin = walls.origin;
+            boundary_.invCellSize = Real(1) / walls.cellSize;
+            boundary_.nx = walls.dims[0];
+            boundary_.ny = walls.dims[1];
+            boundary_.nz = walls.dims[2];
+            boundary_.count = Index(walls.size());
+        }
         exec_.upload(boxes_, setup.obstacleBoxes.data(), setup.obstacleBoxes.size());
         exec_.upload(spheres_, setup.obstacleSpheres.data(), setup.obstacleSpheres.size());
         FaultRecord none{0, 0, 0, 0.0f, 0.0f};
@@ -326,7 +338,13 @@ class SphSolver final : public Simulation {
         exec_.stageEnd("integrate");
     }
 
-    ParticleView view() { return {pos_.data(), vel_.data(), acc_.data(), n_}; }
+    ParticleView view() {
+        BoundaryView walls = boundary_;
+        walls.pos = boundaryPos_.data();
+        walls.cellStart = boundaryStart_.data();
+        walls.near = boundaryNear_.data();
+        return {pos_.data(), vel_.data(), acc_.data(), n_, walls};
+    }
 
     void download(HostParticles& out) override {
         out.resize(n_);
@@ -362,7 +380,8 @@ class SphSolver final : public Simulation {
         std::size_t bytes =
             (pos_.size() + vel_.size() + acc_.size() + sortedPos_.size() + sortedVel_.size()) *
                 sizeof(Real4) +
-            (id_.size() + sortedId_.size()) * sizeof(Index);
+            (id_.size() + sortedId_.size() + boundaryStart_.size()) * sizeof(Index) +
+            boundaryPos_.size() * sizeof(Real4) + boundaryNear_.size();
         return bytes + (mode_ == NeighbourMode::Grid ? sparse_.bytesHeld() : 0) +
                (mode_ == NeighbourMode::Dense ? dense_.bytesHeld() : 0);
     }
@@ -391,6 +410,10 @@ class SphSolver final : public Simulation {
     Buffer<ObstacleSphere> spheres_;
     Buffer<FaultRecord> fault_;
     Buffer<StepClock> clock_;
+    BoundaryView boundary_;  // geometry of the static wall grid; pointers filled by view()
+    Buffer<Real4> boundaryPos_;
+    Buffer<Index> boundaryStart_;
+    Buffer<unsigned char> boundaryNear_;
     typename Exec::Graph graph_;
     int graphParity_ = 0;
     StageTimes times_;
