@@ -16,6 +16,7 @@
 #include <system_error>
 
 #include "scene/embedded_scenes.h"
+#include "scene/mesh_file.h"
 
 namespace weir {
 namespace {
@@ -382,11 +383,34 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
                      ") holds fluid spheres: a scene needs fluid");
     }
 
-    FieldReader obstacles = top.object("obstacles", {"boxes", "spheres"});
+    FieldReader obstacles = top.object("obstacles", {"boxes", "spheres", "meshes"});
     obstacles.forEach("boxes", {"min", "max"},
                       [&](const FieldReader& r) { scene.obstacleBoxes.push_back(readBox(r)); });
     obstacles.forEach("spheres", {"center", "radius"}, [&](const FieldReader& r) {
         scene.obstacleSpheres.push_back(readSphere(r));
+    });
+    obstacles.forEach("meshes", {"file", "scale", "translate"}, [&](const FieldReader& r) {
+        MeshObstacle mesh;
+        r.require("file", "an OBJ or STL file name");
+        mesh.file = r.string("file", "");
+        mesh.scale = r.number("scale", kPositive, 1.0);
+        mesh.translate = r.vec3("translate", Vec3d{});
+        // Relative to the scene file's folder (the working directory for built-in scenes).
+        std::filesystem::path file(mesh.file);
+        if (file.is_relative() && source.find('<') != 0) {
+            file = std::filesystem::path(source).parent_path() / file;
+        }
+        try {
+            MeshData data = readMeshFile(file.string());
+            for (const Vec3d& v : data.vertices) {
+                mesh.vertices.push_back(v * mesh.scale + mesh.translate);
+            }
+            mesh.triangles = std::move(data.triangles);
+        } catch (const std::runtime_error& e) {
+            r.fail(r.pathOf("file"), r.written("file"),
+                   "a readable OBJ or STL file (" + file.string() + ": " + e.what() + ")");
+        }
+        scene.obstacleMeshes.push_back(std::move(mesh));
     });
 
     FieldReader fluid =
@@ -471,7 +495,8 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     }
 
     FieldReader walls = top.object("walls", {"model", "restitution", "friction"});
-    std::string wallModel = walls.string("model", "simple");
+    std::string wallModel =
+        walls.string("model", scene.obstacleMeshes.empty() ? "simple" : "particles");
     if (wallModel == "simple") {
         scene.walls = WallModel::Simple;
     } else if (wallModel == "particles") {
@@ -480,6 +505,11 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
         walls.fail(walls.pathOf("model"), walls.written("model"),
                    "\"particles\" (boundary particles, Akinci et al. 2012) or \"simple\" (the "
                    "paper's collision response)");
+    }
+    if (scene.walls == WallModel::Simple && !scene.obstacleMeshes.empty()) {
+        walls.fail(walls.pathOf("model"), walls.written("model"),
+                   "\"particles\" when obstacles.meshes is given (mesh obstacles act through "
+                   "boundary particles only)");
     }
     scene.wallRestitution = walls.number("restitution", between(0, 1), scene.wallRestitution);
     scene.wallFriction = walls.number("friction", between(0, 1), scene.wallFriction);

@@ -35,9 +35,9 @@ double seconds(std::chrono::steady_clock::time_point since) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-// A tank of water depth H, width H and a slab 10 d deep, walls of boundary particles.
+// A tank of water depth H, width H and a slab 6 d deep, walls of boundary particles.
 void runTank(const ValidationOptions& o, ValidationReport& r) {
-    const double H = 0.3, d = H / o.tankResolution, W = 10 * d;
+    const double H = 0.3, d = H / o.tankResolution, W = 6 * d;
     const std::string json = R"({"name": "validate_hydrostatic",
         "container": {"min": [0, 0, 0], "max": [)" + num(H) + ", " + num(1.5 * H) + ", " + num(W) +
                              R"(]},

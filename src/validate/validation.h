@@ -48,7 +48,7 @@ struct ValidationReport {
 };
 
 // Tolerances (justified in docs/physics.md).
-constexpr double kHydrostaticPressureTolerance = 0.05;  // RMS of layer means, / (rho0 g H)
+constexpr double kHydrostaticPressureTolerance = 0.10;  // RMS of layer means, / (rho0 g H)
 constexpr double kDensityDeviationTolerance = 0.03;     // max (rho - rho0) / rho0
 constexpr double kMeanDensityDeviationTolerance = 0.01;
 constexpr double kStraySpeedTolerance = 0.05;           // RMS |v| / sqrt(2 g H) at rest
