@@ -18,13 +18,13 @@ namespace weir {
 
 // Lives in device memory; the host reads it only between frames.
 struct StepClock {
-    double time;          // simulated time, s
-    double target;        // the next output time: steps stop on it (dt = 0 once there)
-    Real dt;              // the current step's dt; 0 makes the step a no-op
-    unsigned maxSpeed2;   // bits of the largest |v|^2 (a non-negative float) of the last step
-    unsigned maxAccel2;   // bits of the largest |a|^2
-    int step;             // steps taken (no-op steps not counted)
-    int landing;          // this step ends on the target
+    double time;         // simulated time, s
+    double target;       // the next output time: steps stop on it (dt = 0 once there)
+    Real dt;             // the current step's dt; 0 makes the step a no-op
+    unsigned maxSpeed2;  // bits of the largest |v|^2 (a non-negative float) of the last step
+    unsigned maxAccel2;  // bits of the largest |a|^2
+    int step;            // steps taken (no-op steps not counted)
+    int landing;         // this step ends on the target
 };
 
 WEIR_HD inline unsigned floatBits(float f) {
@@ -65,9 +65,8 @@ WEIR_HD inline void recordMax(unsigned* slot, Real value) {
 #endif
 #else
     unsigned seen = __atomic_load_n(slot, __ATOMIC_RELAXED);
-    while (bits > seen &&
-           !__atomic_compare_exchange_n(slot, &seen, bits, true, __ATOMIC_RELAXED,
-                                        __ATOMIC_RELAXED)) {
+    while (bits > seen && !__atomic_compare_exchange_n(slot, &seen, bits, true, __ATOMIC_RELAXED,
+                                                       __ATOMIC_RELAXED)) {
     }
 #endif
 }

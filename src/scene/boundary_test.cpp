@@ -61,7 +61,8 @@ TEST(Boundary, FluidAtTheWallsStartsAtRestDensity) {
         Scene scene = parseScene(kTank, "<test tank>");
         scene.smoothingRatio = ratio;
         SetupReport report;
-        auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, &report));
+        auto sim =
+            makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, &report));
         sim->computeDensity();
         HostParticles p;
         sim->download(p);
@@ -82,7 +83,8 @@ TEST(Boundary, PsiIsAkincisVolumeCappedAtAFullNeighbourhood) {
     Scene scene = parseScene(kTank, "<test tank>");
     scene.obstacleSpheres.push_back({Vec3d(0.1, 0.22, 0.1), 0.04});
     const double d = 0.02, h = 0.04, full = d * d * d / latticeKernelSum(2.0);
-    BoundaryParticles b = buildBoundary(sampleBoundary(scene, d, h), scene.container, h, 1000, full);
+    BoundaryParticles b =
+        buildBoundary(sampleBoundary(scene, d, h), scene.container, h, 1000, full);
     double psiMin = 1e9, psiMax = 0;
     for (const Real4& p : b.pos) {
         psiMin = std::min(psiMin, double(p.w));
@@ -165,8 +167,7 @@ TEST(Boundary, MeshObstaclesFromObjAndStl) {
             R"("meshes": [{"file": "cube.obj", "scale": 0.1, "translate": [0.155, 0, 0.055]}]}})",
         (dir / "mesh.json").string());
     Scene withBox = parseScene(
-        scene + R"("boxes": [{"min": [0.155, 0, 0.055], "max": [0.255, 0.1, 0.155]}]}})",
-        "<box>");
+        scene + R"("boxes": [{"min": [0.155, 0, 0.055], "max": [0.255, 0.1, 0.155]}]}})", "<box>");
     EXPECT_EQ(withMesh.walls, WallModel::Particles);  // meshes act through boundary particles
     const double d = 0.02;
     EXPECT_EQ(seedParticles(withMesh, d).size(), seedParticles(withBox, d).size());
@@ -181,8 +182,7 @@ TEST(Boundary, MeshObstaclesFromObjAndStl) {
 
     // Errors name the file, the field and what is wrong.
     try {
-        parseScene(scene + R"("meshes": [{"file": "missing.obj"}]}})",
-                   (dir / "bad.json").string());
+        parseScene(scene + R"("meshes": [{"file": "missing.obj"}]}})", (dir / "bad.json").string());
         FAIL() << "no error for a missing mesh";
     } catch (const SceneError& e) {
         const std::string text = e.what();

@@ -64,8 +64,8 @@ TEST_P(StabilitySweep, RunsToTheEndStable) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << "sweep " << name << " n=" << sim->particleCount() << " h/d=" << ratio
               << (boundaryParticles ? " walls=particles" : " walls=simple") << ": "
-              << sim->stepCount() << " steps to t=" << sim->time() << " s, worst "
-              << worst.text() << ", " << seconds << " s\n";
+              << sim->stepCount() << " steps to t=" << sim->time() << " s, worst " << worst.text()
+              << ", " << seconds << " s\n";
     EXPECT_EQ(sim->time(), double(report.frames) * report.frameInterval);
     EXPECT_LE(worst.max, boundaryParticles ? kMaxDeviation : kMaxDeviationSimpleWalls);
     EXPECT_LE(worst.mean, kMeanDeviation);

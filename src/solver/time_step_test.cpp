@@ -43,7 +43,8 @@ TEST(TimeStep, EachStepObeysTheCflLimitOfThePreviousState) {
         const double vMax = maxSpeed(state), before = sim->time();
         sim->advance(1);
         const double dt = sim->time() - before;
-        const double cfl = double(p.cflNumber) * double(p.kernel.h) / (double(p.speedOfSound) + vMax);
+        const double cfl =
+            double(p.cflNumber) * double(p.kernel.h) / (double(p.speedOfSound) + vMax);
         ASSERT_GT(dt, 0);
         ASSERT_LE(dt, cfl * (1 + 1e-5)) << "step " << s;
         binding += dt > cfl * (1 - 1e-4) ? 1 : 0;

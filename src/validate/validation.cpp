@@ -39,13 +39,17 @@ double seconds(std::chrono::steady_clock::time_point since) {
 void runTank(const ValidationOptions& o, ValidationReport& r) {
     const double H = 0.3, d = H / o.tankResolution, W = 6 * d;
     const std::string json = R"({"name": "validate_hydrostatic",
-        "container": {"min": [0, 0, 0], "max": [)" + num(H) + ", " + num(1.5 * H) + ", " + num(W) +
+        "container": {"min": [0, 0, 0], "max": [)" +
+                             num(H) + ", " + num(1.5 * H) + ", " + num(W) +
                              R"(]},
-        "blocks": [{"min": [0, 0, 0], "max": [)" + num(H) + ", " + num(H) + ", " + num(W) + R"(]}],
+        "blocks": [{"min": [0, 0, 0], "max": [)" +
+                             num(H) + ", " + num(H) + ", " + num(W) + R"(]}],
         "fluid": {"preset": "water", "restDensity": 1000},
-        "particles": {"spacing": )" + num(d) + R"(},
+        "particles": {"spacing": )" +
+                             num(d) + R"(},
         "walls": {"model": "particles"},
-        "time": {"duration": )" + num(o.settleTime) + R"(, "frameRate": 10}})";
+        "time": {"duration": )" +
+                             num(o.settleTime) + R"(, "frameRate": 10}})";
     Scene scene = parseScene(json, "<validate hydrostatic>");
     SetupReport setupReport;
     SimulationSetup setup = buildSetup(scene, {}, &setupReport);
@@ -69,15 +73,16 @@ void runTank(const ValidationOptions& o, ValidationReport& r) {
     for (int k = 0; k < averaged; ++k) {
         sim->advanceTo(o.settleTime * (0.6 + 0.05 * k));
         if (sim->fault().code != 0) {
-            throw SimulationError("hydrostatic tank: " + describeFault(sim->fault(), sim->params()));
+            throw SimulationError("hydrostatic tank: " +
+                                  describeFault(sim->fault(), sim->params()));
         }
         sim->download(p);
         const DensityDeviation dev = densityDeviation(p, 1000.0);
         worst.max = std::max(worst.max, dev.max);
         worst.mean = std::max(worst.mean, dev.mean);
         for (std::size_t i = 0; i < p.size(); ++i) {
-            const double v2 = double(p.vx[i]) * p.vx[i] + double(p.vy[i]) * p.vy[i] +
-                              double(p.vz[i]) * p.vz[i];
+            const double v2 =
+                double(p.vx[i]) * p.vx[i] + double(p.vy[i]) * p.vy[i] + double(p.vz[i]) * p.vz[i];
             if (k == averaged - 1) {
                 straySquares += v2;
                 strayMax = std::max(strayMax, std::sqrt(v2));
@@ -111,11 +116,12 @@ void runTank(const ValidationOptions& o, ValidationReport& r) {
     }
     const double pressureError = used > 0 ? std::sqrt(squares / used) / r.rho0gH : 1e30;
     const double freeFall = std::sqrt(2 * kG * H);
-    r.checks.push_back({"hydrostatic: pressure error (RMS of interior layer means vs rho0 g depth, "
-                        "/ rho0 g H)",
-                        pressureError, kHydrostaticPressureTolerance, ""});
-    r.checks.push_back({"hydrostatic: max density deviation at rest (rho - rho0) / rho0",
-                        worst.max, kDensityDeviationTolerance, ""});
+    r.checks.push_back(
+        {"hydrostatic: pressure error (RMS of interior layer means vs rho0 g depth, "
+         "/ rho0 g H)",
+         pressureError, kHydrostaticPressureTolerance, ""});
+    r.checks.push_back({"hydrostatic: max density deviation at rest (rho - rho0) / rho0", worst.max,
+                        kDensityDeviationTolerance, ""});
     r.checks.push_back({"hydrostatic: mean density deviation at rest", worst.mean,
                         kMeanDensityDeviationTolerance, ""});
     r.checks.push_back({"hydrostatic: stray velocity RMS / sqrt(2 g H)",
@@ -132,16 +138,19 @@ void runDamBreak(const ValidationOptions& o, ValidationReport& r) {
     const double timeScale = std::sqrt(2 * kG / a);  // T = t sqrt(2 g / a)
     const double endTime = o.damEndT / timeScale;
     const double length = a * (1.5 + 1.4 * o.damEndT);  // past the front at the end
-    const double frameRate = timeScale / 0.25;           // a frame every 0.25 in T
+    const double frameRate = timeScale / 0.25;          // a frame every 0.25 in T
     const std::string json = R"({"name": "validate_martin_moyce",
-        "container": {"min": [0, 0, 0], "max": [)" + num(length) + ", " + num(1.5 * height) + ", " +
-                             num(depth) + R"(]},
-        "blocks": [{"min": [0, 0, 0], "max": [)" + num(a) + ", " + num(height) + ", " + num(depth) +
+        "container": {"min": [0, 0, 0], "max": [)" +
+                             num(length) + ", " + num(1.5 * height) + ", " + num(depth) + R"(]},
+        "blocks": [{"min": [0, 0, 0], "max": [)" +
+                             num(a) + ", " + num(height) + ", " + num(depth) +
                              R"(]}],
         "fluid": {"preset": "water", "restDensity": 1000},
-        "particles": {"spacing": )" + num(d) + R"(},
+        "particles": {"spacing": )" +
+                             num(d) + R"(},
         "walls": {"model": "particles"},
-        "time": {"duration": )" + num(endTime) + R"(, "frameRate": )" + num(frameRate) + "}}";
+        "time": {"duration": )" +
+                             num(endTime) + R"(, "frameRate": )" + num(frameRate) + "}}";
     Scene scene = parseScene(json, "<validate dam break>");
     SetupReport setupReport;
     SimulationSetup setup = buildSetup(scene, {}, &setupReport);
@@ -237,8 +246,9 @@ bool writeValidation(const ValidationReport& r, const std::string& dir, bool plo
     }
     {
         std::ofstream f(fs::path(dir) / "validation.json");
-        f << "{\n  \"passed\": " << (r.passed() ? "true" : "false") << ",\n  \"tankParticles\": "
-          << r.tankParticles << ",\n  \"columnParticles\": " << r.columnParticles
+        f << "{\n  \"passed\": " << (r.passed() ? "true" : "false")
+          << ",\n  \"tankParticles\": " << r.tankParticles
+          << ",\n  \"columnParticles\": " << r.columnParticles
           << ",\n  \"tankSeconds\": " << r.tankSeconds << ",\n  \"damSeconds\": " << r.damSeconds
           << ",\n  \"checks\": [\n";
         for (std::size_t i = 0; i < r.checks.size(); ++i) {
@@ -261,9 +271,10 @@ bool writeValidation(const ValidationReport& r, const std::string& dir, bool plo
                                 "' > '" + (fs::path(dir) / "plot.log").string() + "' 2>&1";
     if (std::system(command.c_str()) != 0) {
         if (message != nullptr) {
-            *message = "no plots: python3 with matplotlib is needed (pip install matplotlib; then "
-                       "python3 " +
-                       (fs::path(dir) / "plot.py").string() + " " + dir + ")";
+            *message =
+                "no plots: python3 with matplotlib is needed (pip install matplotlib; then "
+                "python3 " +
+                (fs::path(dir) / "plot.py").string() + " " + dir + ")";
         }
         return false;
     }

@@ -51,9 +51,9 @@ struct ValidationReport {
 constexpr double kHydrostaticPressureTolerance = 0.10;  // RMS of layer means, / (rho0 g H)
 constexpr double kDensityDeviationTolerance = 0.03;     // max (rho - rho0) / rho0
 constexpr double kMeanDensityDeviationTolerance = 0.01;
-constexpr double kStraySpeedTolerance = 0.05;           // RMS |v| / sqrt(2 g H) at rest
-constexpr double kFrontRmsTolerance = 0.3;              // RMS of Z_sim - Z_ref
-constexpr double kFrontBandRelative = 0.15;             // band drawn: Z_ref (1 +- 0.15) +- 0.2
+constexpr double kStraySpeedTolerance = 0.05;  // RMS |v| / sqrt(2 g H) at rest
+constexpr double kFrontRmsTolerance = 0.3;     // RMS of Z_sim - Z_ref
+constexpr double kFrontBandRelative = 0.15;    // band drawn: Z_ref (1 +- 0.15) +- 0.2
 constexpr double kFrontBandAbsolute = 0.2;
 
 ValidationReport runValidation(const ValidationOptions& options);

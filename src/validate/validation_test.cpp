@@ -17,8 +17,8 @@ TEST(Validate, HydrostaticTankAndMartinMoyceDamBreakPassAtCiResolution) {
     ValidationReport report = runValidation(options);
     ASSERT_GE(report.checks.size(), 7u);
     for (const ValidationCheck& c : report.checks) {
-        std::cout << (c.passed() ? "PASS " : "FAIL ") << c.name << ": " << c.value
-                  << " (tolerance " << c.tolerance << ")\n";
+        std::cout << (c.passed() ? "PASS " : "FAIL ") << c.name << ": " << c.value << " (tolerance "
+                  << c.tolerance << ")\n";
         EXPECT_TRUE(c.passed()) << c.name << " = " << c.value << " > " << c.tolerance;
     }
     // The comparison used the data: the simulated front moved over the measured range.
@@ -26,8 +26,7 @@ TEST(Validate, HydrostaticTankAndMartinMoyceDamBreakPassAtCiResolution) {
     ASSERT_FALSE(report.simZ.empty());
     EXPECT_GT(report.simZ.back(), 4.0);
 
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / "weir_validate_test";
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "weir_validate_test";
     std::filesystem::remove_all(dir);
     std::string message;
     EXPECT_TRUE(writeValidation(report, dir.string(), /*plots=*/false, &message)) << message;
