@@ -78,14 +78,27 @@ std::string caseName(const ::testing::TestParamInfo<SweepCase>& info) {
     return s.str();
 }
 
+// CI: 600 particles at three ratios and 1200 at h = 2d, both wall models. WEIR_SWEEP_SIZES
+// (e.g. "100000,1000000") runs every size at every ratio instead.
 std::vector<SweepCase> sweepCases() {
     std::vector<SweepCase> cases;
+    const char* sizes = std::getenv("WEIR_SWEEP_SIZES");
     for (const std::string& name : builtinSceneNames()) {
         for (bool walls : {false, true}) {
+            if (sizes != nullptr) {
+                std::istringstream list(sizes);
+                std::string size;
+                while (std::getline(list, size, ',')) {
+                    for (double ratio : {1.5, 2.0, 3.0}) {
+                        cases.emplace_back(name, std::stoll(size), ratio, walls);
+                    }
+                }
+                continue;
+            }
             for (double ratio : {1.5, 2.0, 3.0}) {
                 cases.emplace_back(name, 600, ratio, walls);
             }
-            cases.emplace_back(name, 2000, 2.0, walls);
+            cases.emplace_back(name, 1200, 2.0, walls);
         }
     }
     return cases;
