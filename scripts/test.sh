@@ -5,4 +5,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
 cd "$root/build"
+# Tests run side by side, each with OpenMP threads on every core: threads that spin at barriers
+# would then wait for descheduled ones (a step can take 10x longer), so waiting threads sleep.
+export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 ctest --output-on-failure -j "$(nproc)" "$@"

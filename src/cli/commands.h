@@ -11,9 +11,10 @@ namespace weir {
 
 // Exit codes shared by all commands.
 constexpr int kExitOk = 0;
-constexpr int kExitError = 1;   // bad scene, I/O failure, not enough memory
-constexpr int kExitUsage = 2;   // bad command-line arguments
-constexpr int kExitBlowUp = 3;  // the simulation blew up; frames already written stay
+constexpr int kExitError = 1;     // bad scene, I/O failure, not enough memory
+constexpr int kExitUsage = 2;     // bad command-line arguments
+constexpr int kExitBlowUp = 3;    // the simulation blew up; frames already written stay
+constexpr int kExitValidationFailed = 4;  // weir validate: a check missed its tolerance
 
 struct RunOptions {
     std::string scene;  // file path or built-in name; empty: the built-in dam break
@@ -40,6 +41,15 @@ struct BenchOptions {
     std::string outDir = "bench-out";
     bool noPlot = false;
     bool noRender = false;  // skip the point-sprite rendering row
+};
+
+struct ValidateOptions {
+    std::string backend = "auto";
+    int tankResolution = 15;    // particles over the tank's water depth
+    int columnResolution = 12;  // particles across the dam-break column
+    double damEndT = 5.0;       // dimensionless end time T = t sqrt(2 g / a)
+    std::string outDir = "validate-out";
+    bool noPlot = false;
 };
 
 // `weir render` and `weir view` (src/render/, built when its libraries are found).
@@ -144,5 +154,6 @@ class SpriteDrawTimer {
 
 int benchCommand(const BenchOptions& options, SpriteDrawTimer* spriteTimer = nullptr);
 int infoCommand();
+int validateCommand(const ValidateOptions& options);
 
 }  // namespace weir

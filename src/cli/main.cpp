@@ -210,6 +210,30 @@ int main(int argc, char** argv) {
     viewCmd->add_option("--screenshot", view.screenshot,
                         "With --max-frames: save the last frame drawn to this PNG");
 
+    ValidateOptions validate;
+    CLI::App* validateCmd = app.add_subcommand(
+        "validate",
+        "Check the physics: a hydrostatic tank and the Martin & Moyce (1952) dam break, with "
+        "tolerances; writes CSV, JSON and PNG plots");
+    validateCmd->add_option("--backend", validate.backend, "auto (GPU if present), cuda or cpu")
+        ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
+        ->capture_default_str();
+    validateCmd->add_option("--tank-resolution", validate.tankResolution,
+                            "Particles over the tank's water depth")
+        ->check(CLI::Range(6, 400))
+        ->capture_default_str();
+    validateCmd->add_option("--column-resolution", validate.columnResolution,
+                            "Particles across the dam-break column's width")
+        ->check(CLI::Range(6, 400))
+        ->capture_default_str();
+    validateCmd->add_option("--end-time", validate.damEndT,
+                            "Dam break end, in T = t sqrt(2 g / a) (data reach 9.2)")
+        ->check(CLI::Range(1.0, 9.3))
+        ->capture_default_str();
+    validateCmd->add_option("--out,-o", validate.outDir, "Directory for results and plots")
+        ->capture_default_str();
+    validateCmd->add_flag("--no-plot", validate.noPlot, "Skip the PNG plots");
+
     app.add_subcommand("info", "Show the build, the backends and the GPU found");
 
     try {
@@ -283,6 +307,9 @@ int main(int argc, char** argv) {
         }
 #endif
         return benchCommand(bench, spriteTimer.get());
+    }
+    if (validateCmd->parsed()) {
+        return validateCommand(validate);
     }
     return infoCommand();
 }

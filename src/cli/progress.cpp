@@ -40,11 +40,12 @@ void Progress::update(std::int64_t frame, double simTime, long long steps) {
     double elapsed = elapsedSeconds();
     double stepsPerSecond = elapsed > 0 ? double(steps) / elapsed : 0;
     double eta = frame > 0 ? elapsed * double(total_ - frame) / double(frame) : NAN;
-    char line[200];
+    char line[300];
     std::snprintf(line, sizeof line,
-                  "frame %lld/%lld  t = %.3f s  %.0f steps/s  elapsed %s  ETA %s", (long long)frame,
-                  (long long)total_, simTime, stepsPerSecond, formatDuration(elapsed).c_str(),
-                  formatDuration(eta).c_str());
+                  "frame %lld/%lld  t = %.3f s  %.0f steps/s  elapsed %s  ETA %s%s%s",
+                  (long long)frame, (long long)total_, simTime, stepsPerSecond,
+                  formatDuration(elapsed).c_str(), formatDuration(eta).c_str(),
+                  note_.empty() ? "" : "  ", note_.c_str());
     if (live_) {
         std::fprintf(stderr, "\r%s\033[K", line);
         lineOpen_ = true;

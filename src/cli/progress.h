@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 
 namespace weir {
 
@@ -15,6 +16,8 @@ class Progress {
     void update(std::int64_t frame, double simTime, long long steps);
     // Ends the live line (if any) so that later output starts on a fresh line.
     void finish();
+    // Text shown after the numbers of the following updates (e.g. the density deviation).
+    void setNote(std::string note) { note_ = std::move(note); }
     double elapsedSeconds() const;
 
    private:
@@ -22,6 +25,7 @@ class Progress {
     bool quiet_;
     bool live_;
     bool lineOpen_ = false;
+    std::string note_;
     std::chrono::steady_clock::time_point start_;
 };
 

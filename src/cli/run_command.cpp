@@ -6,6 +6,7 @@
 #include "cli/progress.h"
 #include "core/check.h"
 #include "io/frame_writer.h"
+#include "solver/density_deviation.h"
 #include "scene/scene.h"
 #include "scene/setup.h"
 
@@ -56,8 +57,10 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         auto sim = makeSimulation(backend, mode, std::move(setup));
         std::cerr << "weir: " << sim->particleCount() << " particles on " << backendName(backend)
                   << " (" << sim->deviceName() << "), " << neighbourModeName(mode)
-                  << " neighbours, dt " << sim->params().timeStep << " s, " << report.stepsPerFrame
-                  << " steps per frame, " << frames << " frames to " << outDir << "/\n";
+                  << " neighbours, dt " << sim->params().timeStep << " s"
+                  << (sim->params().adaptiveTimeStep ? " (adaptive)" : "") << ", about "
+                  << report.stepsPerFrame << " steps per frame, " << frames << " frames to "
+                  << outDir << "/\n";
 
         FrameWriter writer(outDir, format);
         HostParticles host;
@@ -68,8 +71,9 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             observer->frame(0, 0.0, host);
         }
         Progress progress(frames, options.quiet);
+        DensityDeviation worst;
         for (std::int64_t frame = 1; frame <= frames; ++frame) {
-            sim->advance(report.stepsPerFrame);
+            sim->advanceTo(double(frame) * report.frameInterval);
             FaultRecord fault = sim->fault();
             if (fault.code != 0) {
                 progress.finish();
@@ -79,6 +83,10 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
                 return kExitBlowUp;
             }
             sim->download(host);
+            const DensityDeviation deviation = densityDeviation(host, sim->params().restDensity);
+            worst.max = std::max(worst.max, deviation.max);
+            worst.mean = std::max(worst.mean, deviation.mean);
+            progress.setNote(deviation.text());
             writer.write(int(frame), double(frame) * report.frameInterval, host);
             if (observer != nullptr) {
                 observer->frame(frame, double(frame) * report.frameInterval, host);
@@ -90,9 +98,10 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             observer->finish();
         }
         double seconds = progress.elapsedSeconds();
-        std::cerr << "weir: done, " << frames + 1 << " frames, " << sim->stepCount() << " steps in "
-                  << formatDuration(seconds) << " ("
-                  << (seconds > 0 ? double(sim->stepCount()) / seconds : 0.0) << " steps/s)\n";
+        std::cerr << "weir: done, " << frames + 1 << " frames, " << sim->stepCount()
+                  << " steps in " << formatDuration(seconds) << " ("
+                  << (seconds > 0 ? double(sim->stepCount()) / seconds : 0.0)
+                  << " steps/s); worst frame: " << worst.text() << "\n";
         return kExitOk;
     } catch (const std::invalid_argument& e) {
         std::cerr << "weir: error: " << e.what() << "\n";

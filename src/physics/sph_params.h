@@ -9,21 +9,42 @@
 namespace weir {
 
 enum class IntegratorKind : int { SemiImplicitEuler = 0, ExplicitEuler = 1 };
+// Linear: the paper's eq. 3. Tait: gamma = 7 (physics/eos.h).
+enum class EosKind : int { Linear = 0, Tait = 1 };
+// Simple: the paper's collision response at the walls. Particles: Akinci et al. 2012 boundary
+// particles that add to density and pressure force (the simple response stays as a safety net).
+// Pressure force: Symmetric, m_j (p_i / rho_i^2 + p_j / rho_j^2) (consistent: tends to grad p),
+// or the paper's eq. 4, m_j (p_i + p_j) / (2 rho_j) (tends to grad p / 2). physics/stages.h.
+enum class PressureForm : int { Symmetric = 0, Paper = 1 };
+enum class WallKind : int { Simple = 0, Particles = 1 };
 
 struct SphParams {
     KernelCoefficients kernel;
     Real mass = 0;                      // per particle, kg
     Real restDensity = 0;               // rho0, kg/m^3
-    Real stiffness = 0;                 // k of eq. 3, m^2/s^2
-    bool clampNegativePressure = true;  // P = max(0, k (rho - rho0)) when set
+    Real invRestDensity = 0;            // 1 / rho0
+    EosKind eos = EosKind::Linear;
+    PressureForm pressureForce = PressureForm::Symmetric;
+    Real stiffness = 0;                 // k of eq. 3, m^2/s^2 (= c^2)
+    Real taitB = 0;                     // B of Tait's equation, Pa (= rho0 c^2 / 7)
+    Real negativePressureScale = 0;     // share of negative pressure kept: 0 clamps, 1 keeps
     Real viscosity = 0;                 // mu of eq. 5, Pa s
     Vec3 gravity;                       // m/s^2
-    Real timeStep = 0;                  // s
+    Real timeStep = 0;                  // s: the fixed step, or the first adaptive one
+    // Adaptive step (physics/time_step.h), recomputed every step on the device.
+    bool adaptiveTimeStep = false;
+    Real speedOfSound = 0;     // c, m/s
+    Real cflNumber = 0.4;      // dt <= cflNumber h / (c + max |v|)
+    Real forceNumber = 0.25;   // dt <= forceNumber sqrt(h / max |a|)
+    Real viscousLimit = 1e30;  // dt <= 0.125 h^2 / nu, s (constant)
+    Real maxTimeStep = 1e30;   // s
     IntegratorKind integrator = IntegratorKind::SemiImplicitEuler;
 
     Vec3 boxMin, boxMax;   // container walls
     Real restitution = 0;  // normal speed kept after a wall contact
     Real friction = 0;     // share of tangential speed removed on contact
+    WallKind walls = WallKind::Simple;
+    Real wallViscosity = 0;  // mu against boundary particles, Pa s (0: free slip)
     Real maxSpeed = 0;     // blow-up bound, m/s
 };
 

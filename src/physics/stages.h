@@ -6,9 +6,11 @@
 
 #include "core/config.h"
 #include "core/vec3.h"
+#include "physics/boundary.h"
 #include "physics/eos.h"
 #include "physics/kernels.h"
 #include "physics/sph_params.h"
+#include "physics/time_step.h"
 
 namespace weir {
 
@@ -22,6 +24,7 @@ struct ParticleView {
     Real4* vel;  // vx, vy, vz, density
     Real4* acc;  // ax, ay, az, unused
     Index count;
+    BoundaryView boundary;  // static wall particles (physics/boundary.h); empty: none
 
     WEIR_HD Real density(Index i) const { return vel[i].w; }
     WEIR_HD Vec3 position(Index i) const { return pos[i].xyz(); }
@@ -49,6 +52,7 @@ struct FaultRecord {
     int step;      // step number at which it happened
     int particle;  // index in cell order at that step
     float value;   // speed, for TooFast
+    float time;    // simulated time at the end of that step, s
 };
 
 WEIR_HD inline bool claimFault(FaultRecord* record, FaultCode code) {
@@ -69,16 +73,23 @@ WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Nei
     Real sum = 0;
     nb.forEachCandidate(
         i, [&](Index j) { sum += poly6(params.kernel, lengthSquared(xi - pv.position(j))); });
-    pv.vel[i].w = params.mass * sum;
+    pv.vel[i].w = params.mass * sum + boundaryDensity(pv.boundary, params.kernel, xi);
 }
 
-// Eq. 4 (pressure, spiky gradient) and eq. 5 (viscosity, its Laplacian) between i and j:
-// the force density on i, for r_vec = x_i - x_j and 0 < r < h.
+// The pressure (spiky gradient) and viscous (eq. 5, its Laplacian) force density on i from j,
+// for r_vec = x_i - x_j and 0 < r < h. Pressure by the paper's eq. 4, m_j (p_i + p_j) / (2 rho_j),
+// or by the symmetric form rho_i m_j (p_i / rho_i^2 + p_j / rho_j^2) (Monaghan 1992): both
+// conserve momentum, but only the latter tends to grad p as particles get finer; eq. 4 tends to
+// grad p / 2 (its p_i term vanishes over a full neighbourhood), so a tank at rest under eq. 4
+// holds twice the hydrostatic pressure. piOverRhoi2Rhoi = p_i / rho_i; rhoi for the symmetric form.
 WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r, Real invR, Real pi,
-                              Real pj, Real rhoj, const Vec3& vi, const Vec3& vj) {
-    const Real massOverRho = params.mass * reciprocal(rhoj);
-    Real pressure =
-        -massOverRho * Real(0.5) * (pi + pj) * spikyGradientFactor(params.kernel, r, invR);
+                              Real pj, Real rhoi, Real rhoj, const Vec3& vi, const Vec3& vj) {
+    const Real invRhoj = reciprocal(rhoj);
+    const Real massOverRho = params.mass * invRhoj;
+    const Real pressureSum = params.pressureForce == PressureForm::Symmetric
+                                 ? rhoi * (pi / (rhoi * rhoi) + pj * invRhoj * invRhoj) * rhoj
+                                 : Real(0.5) * (pi + pj);
+    Real pressure = -massOverRho * pressureSum * spikyGradientFactor(params.kernel, r, invR);
     Real viscous = params.viscosity * massOverRho * viscosityLaplacian(params.kernel, r);
     return rVec * pressure + (vj - vi) * viscous;
 }
@@ -98,10 +109,12 @@ WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighb
             const Real4 vj = pv.vel[j];
             const Real invR = reciprocalSqrt(r2);
             force += pairForce(params, rVec, r2 * invR, invR, pi, pressureFromDensity(params, vj.w),
-                               vj.w, vi.xyz(), vj.xyz());
+                               rhoi, vj.w, vi.xyz(), vj.xyz());
         }
     });
-    return force / rhoi + params.gravity;
+    return force / rhoi + params.gravity +
+           boundaryAcceleration(pv.boundary, params.kernel, xi, vi.xyz(), rhoi, pi,
+                                params.wallViscosity, params.invRestDensity);
 }
 
 template <class Neighbours>
@@ -178,12 +191,13 @@ WEIR_HD inline void collide(Vec3& x, Vec3& v, const SphParams& params,
     }
 }
 
-// Time integration of one particle (semi-implicit Euler by default; the paper's explicit Euler
-// selectable), collision response, and the blow-up checks; updates x and v in place.
+// Time integration of one particle over the clock's dt (semi-implicit Euler by default; the
+// paper's explicit Euler selectable), collision response, the blow-up checks, and the largest
+// speed and acceleration for the next step's dt; updates x and v in place.
 WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
                                     const SphParams& params, const ObstacleView& obstacles,
-                                    FaultRecord* fault, int step) {
-    const Real dt = params.timeStep;
+                                    FaultRecord* fault, StepClock* clock) {
+    const Real dt = clock->dt;
     if (params.integrator == IntegratorKind::SemiImplicitEuler) {
         v += a * dt;
         x += v * dt;
@@ -194,6 +208,8 @@ WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
     collide(x, v, params, obstacles);
 
     const Real speed2 = lengthSquared(v);
+    recordMax(&clock->maxSpeed2, speed2);
+    recordMax(&clock->maxAccel2, lengthSquared(a));
     const bool finite =
         std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(speed2);
     FaultCode code = FaultCode::None;
@@ -206,17 +222,19 @@ WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
         code = FaultCode::Escaped;
     }
     if (code != FaultCode::None && claimFault(fault, code)) {
-        fault->step = step;
+        fault->step = clock->step;
         fault->particle = i;
         fault->value = float(std::sqrt(speed2));
+        fault->time = float(clock->time + double(dt));
     }
 }
 
 // The paper's displacement stage: integrates particle i with the acceleration of the force stage.
 WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams& params,
-                                const ObstacleView& obstacles, FaultRecord* fault, int step) {
+                                const ObstacleView& obstacles, FaultRecord* fault,
+                                StepClock* clock) {
     Vec3 x = pv.position(i), v = pv.velocity(i);
-    advanceParticle(x, v, pv.acc[i].xyz(), i, params, obstacles, fault, step);
+    advanceParticle(x, v, pv.acc[i].xyz(), i, params, obstacles, fault, clock);
     pv.pos[i] = Real4::from(x);
     pv.vel[i] = Real4::from(v, pv.vel[i].w);  // keeps the step's density for output
 }
@@ -227,12 +245,17 @@ WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams
 template <class Neighbours>
 WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                              const SphParams& params, const ObstacleView& obstacles,
-                                             FaultRecord* fault, int step, Real4* newPos,
+                                             FaultRecord* fault, StepClock* clock, Real4* newPos,
                                              Real4* newVel) {
-    const Vec3 a = accelerationOf(i, pv, nb, params);
     const Real4 v4 = pv.vel[i];
+    if (clock->dt == Real(0)) {  // a no-op step past the output time: state carried over
+        newPos[i] = pv.pos[i];
+        newVel[i] = v4;
+        return;
+    }
+    const Vec3 a = accelerationOf(i, pv, nb, params);
     Vec3 x = pv.position(i), v = v4.xyz();
-    advanceParticle(x, v, a, i, params, obstacles, fault, step);
+    advanceParticle(x, v, a, i, params, obstacles, fault, clock);
     newPos[i] = Real4::from(x);
     newVel[i] = Real4::from(v, v4.w);
 }

@@ -16,6 +16,7 @@
 #include <system_error>
 
 #include "scene/embedded_scenes.h"
+#include "scene/mesh_file.h"
 
 namespace weir {
 namespace {
@@ -382,20 +383,80 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
                      ") holds fluid spheres: a scene needs fluid");
     }
 
-    FieldReader obstacles = top.object("obstacles", {"boxes", "spheres"});
+    FieldReader obstacles = top.object("obstacles", {"boxes", "spheres", "meshes"});
     obstacles.forEach("boxes", {"min", "max"},
                       [&](const FieldReader& r) { scene.obstacleBoxes.push_back(readBox(r)); });
     obstacles.forEach("spheres", {"center", "radius"}, [&](const FieldReader& r) {
         scene.obstacleSpheres.push_back(readSphere(r));
     });
+    obstacles.forEach("meshes", {"file", "scale", "translate"}, [&](const FieldReader& r) {
+        MeshObstacle mesh;
+        r.require("file", "an OBJ or STL file name");
+        mesh.file = r.string("file", "");
+        mesh.scale = r.number("scale", kPositive, 1.0);
+        mesh.translate = r.vec3("translate", Vec3d{});
+        // Relative to the scene file's folder (the working directory for built-in scenes).
+        std::filesystem::path file(mesh.file);
+        if (file.is_relative() && source.find('<') != 0) {
+            file = std::filesystem::path(source).parent_path() / file;
+        }
+        try {
+            MeshData data = readMeshFile(file.string());
+            for (const Vec3d& v : data.vertices) {
+                mesh.vertices.push_back(v * mesh.scale + mesh.translate);
+            }
+            mesh.triangles = std::move(data.triangles);
+        } catch (const std::runtime_error& e) {
+            r.fail(r.pathOf("file"), r.written("file"),
+                   "a readable OBJ or STL file (" + file.string() + ": " + e.what() + ")");
+        }
+        scene.obstacleMeshes.push_back(std::move(mesh));
+    });
 
     FieldReader fluid =
-        top.object("fluid", {"restDensity", "viscosity", "stiffness", "clampNegativePressure"});
+        top.object("fluid", {"preset", "restDensity", "viscosity", "stiffness", "eos",
+                             "pressureForce", "clampNegativePressure", "negativePressureScale"});
+    scene.preset = fluid.string("preset", "");
+    if (!scene.preset.empty()) {
+        const FluidPreset* preset = fluidPreset(scene.preset);
+        if (preset == nullptr) {
+            fluid.fail(fluid.pathOf("preset"), fluid.written("preset"),
+                       "one of " + join(fluidPresetNames(), ", "));
+        }
+        scene.restDensity = preset->density;
+        scene.physicalViscosity = preset->viscosity;
+    }
     scene.restDensity = fluid.number("restDensity", kPositive, scene.restDensity);
     scene.viscosity = fluid.optionalNumber("viscosity", atLeast(0));
     scene.stiffness = fluid.optionalNumber("stiffness", kPositive);
+    std::string eos = fluid.string("eos", "linear");
+    if (eos == "linear") {
+        scene.eos = EquationOfState::Linear;
+    } else if (eos == "tait") {
+        scene.eos = EquationOfState::Tait;
+    } else {
+        fluid.fail(fluid.pathOf("eos"), fluid.written("eos"),
+                   "\"linear\" (the paper's eq. 3) or \"tait\" (gamma = 7)");
+    }
+    std::string pressureForce = fluid.string("pressureForce", "symmetric");
+    if (pressureForce == "symmetric" || pressureForce == "paper") {
+        scene.paperPressureForce = pressureForce == "paper";
+    } else {
+        fluid.fail(fluid.pathOf("pressureForce"), fluid.written("pressureForce"),
+                   "\"symmetric\" (m (p_i / rho_i^2 + p_j / rho_j^2)) or \"paper\" (eq. 4)");
+    }
     scene.clampNegativePressure =
         fluid.boolean("clampNegativePressure", scene.clampNegativePressure);
+    scene.negativePressureScale = fluid.number("negativePressureScale", between(0, 1),
+                                               scene.clampNegativePressure ? 0.0 : 1.0);
+    if (fluid.find("clampNegativePressure") && fluid.find("negativePressureScale") &&
+        scene.clampNegativePressure != (scene.negativePressureScale == 0)) {
+        fluid.fail(fluid.pathOf("negativePressureScale"), fluid.written("negativePressureScale"),
+                   std::string(scene.clampNegativePressure ? "0" : "above 0") +
+                       " to agree with clampNegativePressure " +
+                       fluid.written("clampNegativePressure") + ", or given without it");
+    }
+    scene.clampNegativePressure = scene.negativePressureScale == 0;
 
     FieldReader particles = top.object("particles", {"count", "spacing", "smoothingRatio"});
     if (particles.find("count") && particles.find("spacing")) {
@@ -413,7 +474,8 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
 
     scene.gravity = top.vec3("gravity", scene.gravity);
 
-    FieldReader time = top.object("time", {"duration", "frameRate", "timeStep", "integrator"});
+    FieldReader time =
+        top.object("time", {"duration", "frameRate", "timeStep", "integrator", "adaptive"});
     scene.duration = time.number("duration", kPositive, scene.duration);
     scene.frameRate = time.number("frameRate", kPositive, scene.frameRate);
     // A step longer than a frame could not land on frame times.
@@ -421,6 +483,9 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     stepRange.hi = 1.0 / scene.frameRate;
     stepRange.note = " (1 / frameRate)";
     scene.timeStep = time.optionalNumber("timeStep", stepRange);
+    if (time.find("adaptive")) {
+        scene.adaptiveTimeStep = time.boolean("adaptive", true);
+    }
     std::string integrator = time.string("integrator", "semi-implicit-euler");
     if (auto chosen = integratorByName(integrator)) {
         scene.integrator = *chosen;
@@ -429,7 +494,23 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
                   "one of \"semi-implicit-euler\", \"explicit-euler\"");
     }
 
-    FieldReader walls = top.object("walls", {"restitution", "friction"});
+    FieldReader walls = top.object("walls", {"model", "restitution", "friction"});
+    std::string wallModel =
+        walls.string("model", scene.obstacleMeshes.empty() ? "simple" : "particles");
+    if (wallModel == "simple") {
+        scene.walls = WallModel::Simple;
+    } else if (wallModel == "particles") {
+        scene.walls = WallModel::Particles;
+    } else {
+        walls.fail(walls.pathOf("model"), walls.written("model"),
+                   "\"particles\" (boundary particles, Akinci et al. 2012) or \"simple\" (the "
+                   "paper's collision response)");
+    }
+    if (scene.walls == WallModel::Simple && !scene.obstacleMeshes.empty()) {
+        walls.fail(walls.pathOf("model"), walls.written("model"),
+                   "\"particles\" when obstacles.meshes is given (mesh obstacles act through "
+                   "boundary particles only)");
+    }
     scene.wallRestitution = walls.number("restitution", between(0, 1), scene.wallRestitution);
     scene.wallFriction = walls.number("friction", between(0, 1), scene.wallFriction);
 
@@ -438,6 +519,24 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
 }
 
 }  // namespace
+
+const FluidPreset* fluidPreset(const std::string& name) {
+    // Handbook values near 20 C (CRC Handbook of Chemistry and Physics; honey varies with water
+    // content, 2-10 Pa s: the middle of the range).
+    static const FluidPreset kPresets[] = {
+        {"water", 998.0, 1.0e-3, "CRC Handbook, water at 20 C"},
+        {"oil", 911.0, 0.084, "CRC Handbook, olive oil at 20 C"},
+        {"honey", 1420.0, 6.0, "honey at 20 C, 17% water (2-10 Pa s by water content)"},
+    };
+    for (const FluidPreset& preset : kPresets) {
+        if (name == preset.name) {
+            return &preset;
+        }
+    }
+    return nullptr;
+}
+
+std::vector<std::string> fluidPresetNames() { return {"water", "oil", "honey"}; }
 
 Scene parseScene(const std::string& jsonText, const std::string& sourceName) {
     std::string stem = std::filesystem::path(sourceName).stem().string();

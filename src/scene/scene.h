@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <array>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -37,7 +38,31 @@ struct FluidSphere {
     Vec3d velocity;
 };
 
+// A triangle-mesh obstacle read from an OBJ or STL file (ASCII or binary STL), placed by a
+// uniform scale then a translation. Triangles in metres after placement; outward normals by the
+// right-hand rule (counter-clockwise seen from outside), as both formats specify.
+struct MeshObstacle {
+    std::string file;  // as written in the scene, resolved against the scene file's folder
+    double scale = 1;
+    Vec3d translate;
+    std::vector<Vec3d> vertices;             // placed
+    std::vector<std::array<int, 3>> triangles;
+};
+
 enum class Integrator { SemiImplicitEuler, ExplicitEuler };
+enum class EquationOfState { Linear, Tait };
+enum class WallModel { Simple, Particles };
+
+// A named fluid: density (kg/m^3) and dynamic viscosity (Pa s) near 20 C.
+struct FluidPreset {
+    const char* name;
+    double density;
+    double viscosity;
+    const char* source;
+};
+// water, oil (olive), honey; nullptr for an unknown name.
+const FluidPreset* fluidPreset(const std::string& name);
+std::vector<std::string> fluidPresetNames();
 
 struct Scene {
     std::string name = "scene";  // "name", default: file stem
@@ -48,12 +73,21 @@ struct Scene {
     std::vector<FluidBlock> blocks;            // "blocks": [{"min","max","velocity"?}]
     std::vector<FluidSphere> spheres;          // "spheres": [{"center","radius","velocity"?}]
     std::vector<Box> obstacleBoxes;            // "obstacles": {"boxes": [{"min","max"}], ...
-    std::vector<SphereShape> obstacleSpheres;  //   "spheres": [{"center","radius"}]}
+    std::vector<SphereShape> obstacleSpheres;  //   "spheres": [{"center","radius"}],
+    std::vector<MeshObstacle> obstacleMeshes;  //   "meshes": [{"file","scale"?,"translate"?}]}
 
     // "fluid": {...}
-    double restDensity = 1000.0;  // "restDensity", kg/m^3, > 0
+    std::string preset;           // "preset": "water" | "oil" | "honey" ("" none: water-like)
+    double restDensity = 1000.0;  // "restDensity", kg/m^3, > 0 (default: the preset's)
     std::optional<double>
         viscosity;  // "viscosity", dynamic mu of eq. 5, Pa s, >= 0; unset: derived
+    double physicalViscosity = 0;  // the preset's mu, added to the derived artificial one
+    EquationOfState eos = EquationOfState::Linear;  // "eos": "linear" (eq. 3) | "tait"
+    // "pressureForce": "symmetric" (Monaghan: tends to grad p) | "paper" (eq. 4: grad p / 2)
+    bool paperPressureForce = false;
+    // "negativePressureScale" in [0, 1]: share of negative pressure kept (0 clamps, 1 keeps);
+    // "clampNegativePressure": true is 0, false is 1.
+    double negativePressureScale = 0;
     std::optional<double> stiffness;  // "stiffness", k of eq. 3, m^2/s^2, > 0; unset: derived
     // "clampNegativePressure": eq. 3 gives negative pressure where the free surface lacks
     // neighbours; it pulls surface particles together and throws jets off walls. Clamped by
@@ -74,8 +108,12 @@ struct Scene {
     Integrator integrator =
         Integrator::SemiImplicitEuler;  // "integrator":
                                         // "semi-implicit-euler" | "explicit-euler"
+    // "adaptive": recompute the step every step from CFL, viscous and force limits (default
+    // true, false when timeStep is given).
+    std::optional<bool> adaptiveTimeStep;
 
     // "walls": {...}
+    WallModel walls = WallModel::Simple;  // "model": "simple" (the paper) | "particles" (Akinci)
     double wallRestitution = 0.0;  // "restitution", in [0, 1]: normal speed kept after a bounce
     double wallFriction = 0.0;     // "friction", in [0, 1]: tangential speed removed on contact
 

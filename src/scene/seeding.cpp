@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "scene/boundary.h"
+
 namespace weir {
 
 namespace {
@@ -39,6 +41,15 @@ bool blockStandsAlone(const SceneSeeds& seeds, std::size_t block) {
 
 }  // namespace
 
+bool insideObstacleMesh(const SceneSeeds& seeds, const Vec3d& p) {
+    for (const MeshObstacle& mesh : seeds.obstacleMeshes) {
+        if (insideMesh(mesh, p)) {
+            return true;
+        }
+    }
+    return false;
+}
+
 SeedShapes SceneSeeds::shapes() const {
     return {fluidBoxes.data(),        int(fluidBoxes.size()),     fluidSpheres.data(),
             int(fluidSpheres.size()), obstacleBoxes.data(),       int(obstacleBoxes.size()),
@@ -55,6 +66,7 @@ SceneSeeds sceneSeeds(const Scene& scene, double d) {
     }
     seeds.obstacleBoxes = scene.obstacleBoxes;
     seeds.obstacleSpheres = scene.obstacleSpheres;
+    seeds.obstacleMeshes = scene.obstacleMeshes;
     auto lattice = [&](const Box& bounds, const Vec3d& velocity, int shape) {
         SeedLattice l;
         l.lo = bounds.min;
@@ -77,7 +89,8 @@ SceneSeeds sceneSeeds(const Scene& scene, double d) {
     }
     const SeedShapes shapes = seeds.shapes();
     for (const SeedLattice& l : seeds.lattices) {
-        if (l.shape < shapes.fluidBoxCount && blockStandsAlone(seeds, std::size_t(l.shape))) {
+        if (l.shape < shapes.fluidBoxCount && seeds.obstacleMeshes.empty() &&
+            blockStandsAlone(seeds, std::size_t(l.shape))) {
             seeds.count += l.points();
             continue;
         }
@@ -85,7 +98,8 @@ SceneSeeds sceneSeeds(const Scene& scene, double d) {
         const std::int64_t points = l.points();
 #pragma omp parallel for reduction(+ : kept) schedule(static)
         for (std::int64_t k = 0; k < points; ++k) {
-            kept += keepSeed(shapes, l, l.point(k)) ? 1 : 0;
+            const Vec3d p = l.point(k);
+            kept += keepSeed(shapes, l, p) && !insideObstacleMesh(seeds, p) ? 1 : 0;
         }
         seeds.count += kept;
     }

@@ -85,13 +85,17 @@ WEIR_HD inline bool keepSeed(const SeedShapes& shapes, const SeedLattice& lattic
 }
 
 // A scene's seeding at one spacing, on the host: its shapes and one lattice per fluid shape.
+// Triangle-mesh obstacles are tested on the host only: a scene with them is seeded there.
 struct SceneSeeds {
     std::vector<Box> fluidBoxes, obstacleBoxes;
     std::vector<SphereShape> fluidSpheres, obstacleSpheres;
+    std::vector<MeshObstacle> obstacleMeshes;
     std::vector<SeedLattice> lattices;
     std::int64_t count = 0;  // particles the lattices keep
 
     bool empty() const { return lattices.empty(); }
+    // Whether a backend can seed these without the host (no mesh obstacles).
+    bool seedableOnDevice() const { return obstacleMeshes.empty(); }
     // The shapes, in this object's host memory.
     SeedShapes shapes() const;
 };
@@ -99,6 +103,9 @@ struct SceneSeeds {
 // The seeding of `scene` at spacing d, with its particle count (counted in parallel; in closed
 // form for a block that no obstacle or earlier shape touches).
 SceneSeeds sceneSeeds(const Scene& scene, double spacing);
+
+// Whether p lies inside one of the seeds' mesh obstacles (host only).
+bool insideObstacleMesh(const SceneSeeds& seeds, const Vec3d& p);
 
 // Calls visit(position, velocity) for every kept lattice point, in order: shape by shape, each
 // lattice in its own order.
@@ -108,7 +115,7 @@ void forEachSeed(const SceneSeeds& seeds, F&& visit) {
     for (const SeedLattice& lattice : seeds.lattices) {
         for (std::int64_t k = 0; k < lattice.points(); ++k) {
             const Vec3d p = lattice.point(k);
-            if (keepSeed(shapes, lattice, p)) {
+            if (keepSeed(shapes, lattice, p) && !insideObstacleMesh(seeds, p)) {
                 visit(p, lattice.velocity);
             }
         }

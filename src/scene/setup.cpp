@@ -7,6 +7,7 @@
 
 #include "grid/cell_id.h"
 #include "physics/kernels.h"
+#include "scene/boundary.h"
 #include "scene/seeding.h"
 
 namespace weir {
@@ -122,7 +123,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         throw SceneError(where + ": " + std::to_string(setup.seeds.count) +
                          " particles exceed the limit of 2147483647");
     }
-    if (!options.seedOnDevice) {
+    if (!options.seedOnDevice || !setup.seeds.seedableOnDevice()) {
         forEachSeed(setup.seeds,
                     [&](const Vec3d& p, const Vec3d& v) { setup.particles.push(p, v); });
         setup.seeds = SceneSeeds{};
@@ -185,22 +186,57 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         stiffness = std::pow(10.0 * report.expectedSpeed, 2);
         say("stiffness k = " + fmt(stiffness) + " m^2/s^2: speed of sound c = 10 x expected speed");
     }
-    say(scene.clampNegativePressure
-            ? "pressure P = max(0, k (rho - rho0)): eq. 3 clamped at the free surface"
-            : "pressure P = k (rho - rho0): eq. 3 as in the paper, negative at the free surface");
     const double c = std::sqrt(stiffness);
     report.speedOfSound = c;
+    const double taitB = scene.restDensity * stiffness / 7.0;
+    if (scene.eos == EquationOfState::Tait) {
+        say("pressure by Tait's equation P = B ((rho / rho0)^7 - 1), B = rho0 c^2 / 7 = " +
+            fmt(taitB) + " Pa: the same speed of sound, stiffer under compression");
+    } else {
+        say("pressure P = k (rho - rho0): the paper's eq. 3");
+    }
+    say(scene.paperPressureForce
+            ? "pressure force by the paper's eq. 4, m_j (p_i + p_j) / (2 rho_j): it tends to "
+              "grad p / 2, so pressures at rest read twice hydrostatic"
+            : "pressure force m_j (p_i / rho_i^2 + p_j / rho_j^2) grad W (symmetric, Monaghan "
+              "1992): conserves momentum and tends to grad p, so pressures are hydrostatic at "
+              "rest (the paper's eq. 4 tends to grad p / 2)");
+    if (scene.negativePressureScale == 0) {
+        say("negative pressure clamped to 0: surface particles lack neighbours, read light and "
+            "would pull into clumps");
+    } else {
+        say("negative pressure kept at " + fmt(scene.negativePressureScale) +
+            " of its value (1 is the equation as written)");
+    }
 
     // Viscosity: the scene's, or an artificial one that damps the pressure waves of a weakly
     // compressible fluid (kinematic nu = alpha h c / 10 with alpha = 0.1, Monaghan's form).
     double viscosity;
+    const double artificial = scene.restDensity * 0.1 * h * c / 10.0;
+    if (!scene.preset.empty()) {
+        const FluidPreset* preset = fluidPreset(scene.preset);
+        say("fluid " + scene.preset + ": rho0 = " + fmt(preset->density) +
+            " kg/m^3, mu = " + fmt(preset->viscosity) + " Pa s (" + preset->source + ")" +
+            (scene.restDensity != preset->density
+                 ? "; rho0 overridden to " + fmt(scene.restDensity) + " (scene)"
+                 : ""));
+    }
     if (scene.viscosity) {
         viscosity = *scene.viscosity;
         say("viscosity mu = " + fmt(viscosity) + " Pa s (scene)");
+        if (viscosity < 0.05 * artificial) {
+            report.warnings.push_back(
+                "viscosity mu = " + fmt(viscosity) + " Pa s is under 5% of the " + fmt(artificial) +
+                " Pa s that damps this resolution's pressure waves: expect a noisy, ringing "
+                "density and possibly a blow-up; leave fluid.viscosity unset (the fluid's own "
+                "viscosity comes from fluid.preset) or use mu >= " +
+                fmt(artificial));
+        }
     } else {
-        viscosity = scene.restDensity * 0.1 * h * c / 10.0;
-        say("viscosity mu = " + fmt(viscosity) +
-            " Pa s: artificial, nu = 0.1 h c / 10, to damp pressure waves");
+        viscosity = artificial + scene.physicalViscosity;
+        say("viscosity mu = " + fmt(viscosity) + " Pa s = " + fmt(scene.physicalViscosity) +
+            " (the fluid's) + " + fmt(artificial) +
+            " (artificial, nu = 0.1 h c / 10, damps pressure waves)");
     }
 
     // Time step: CFL, viscous diffusion and body-force limits; whole steps per output frame.
@@ -210,6 +246,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     double dtForce = g > 0 ? 0.25 * std::sqrt(h / g) : 1e300;
     double dtStable = std::min({dtCfl, dtViscous, dtForce});
     double dt = dtStable;
+    const bool adaptive = scene.adaptiveTimeStep.value_or(!scene.timeStep);
     if (scene.timeStep) {
         dt = *scene.timeStep;
         if (dt > dtStable) {
@@ -223,19 +260,48 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     report.stepsPerFrame = std::max(1, int(std::ceil(report.frameInterval / dt - 1e-9)));
     dt = report.frameInterval / report.stepsPerFrame;
     report.frames = std::int64_t(std::floor(scene.duration * scene.frameRate + 1e-9));
-    say("time step " + fmt(dt) + " s (" + std::to_string(report.stepsPerFrame) +
-        " per frame; limits: CFL " + fmt(dtCfl) + ", viscous " + fmt(dtViscous) + ", force " +
-        fmt(dtForce) + ")");
+    if (adaptive) {
+        say("time step adaptive, recomputed every step on the device: min(0.4 h / (c + max|v|), "
+            "0.25 sqrt(h / max|a|), 0.125 h^2 / nu = " +
+            fmt(dtViscous) + " s), the last step before each frame cut to land on it; " + "about " +
+            fmt(dt) + " s (" + std::to_string(report.stepsPerFrame) +
+            " per frame at the expected speed; CFL " + fmt(dtCfl) + ", force " + fmt(dtForce) +
+            ")");
+    } else {
+        say("time step " + fmt(dt) + " s, fixed (" + std::to_string(report.stepsPerFrame) +
+            " per frame; limits: CFL " + fmt(dtCfl) + ", viscous " + fmt(dtViscous) + ", force " +
+            fmt(dtForce) + ")");
+    }
+    if (scene.smoothingRatio < 1.5) {
+        report.warnings.push_back(
+            "smoothingRatio " + fmt(scene.smoothingRatio) + " gives each particle only about " +
+            fmt(4.0 / 3.0 * kPi * std::pow(scene.smoothingRatio, 3)) +
+            " neighbours: density estimates will be noisy and particles may clump; use 1.8 to 2.5");
+    } else if (scene.smoothingRatio > 3.0) {
+        report.warnings.push_back(
+            "smoothingRatio " + fmt(scene.smoothingRatio) + " gives about " +
+            fmt(4.0 / 3.0 * kPi * std::pow(scene.smoothingRatio, 3)) +
+            " neighbours: stable but slow and smeared (poly6 and spiky over-smooth); 2 is the "
+            "usual choice");
+    }
 
     SphParams& p = setup.params;
     p.kernel = KernelCoefficients::forRadius(h);
     p.mass = Real(mass);
     p.restDensity = Real(scene.restDensity);
+    p.invRestDensity = Real(1.0 / scene.restDensity);
+    p.eos = scene.eos == EquationOfState::Tait ? EosKind::Tait : EosKind::Linear;
+    p.pressureForce = scene.paperPressureForce ? PressureForm::Paper : PressureForm::Symmetric;
     p.stiffness = Real(stiffness);
-    p.clampNegativePressure = scene.clampNegativePressure;
+    p.taitB = Real(taitB);
+    p.negativePressureScale = Real(scene.negativePressureScale);
     p.viscosity = Real(viscosity);
     p.gravity = Vec3(scene.gravity);
     p.timeStep = Real(dt);
+    p.adaptiveTimeStep = adaptive;
+    p.speedOfSound = Real(c);
+    p.viscousLimit = Real(std::min(dtViscous, 1e30));
+    p.maxTimeStep = Real(report.frameInterval);
     p.integrator = scene.integrator == Integrator::ExplicitEuler
                        ? IntegratorKind::ExplicitEuler
                        : IntegratorKind::SemiImplicitEuler;
@@ -245,6 +311,14 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     p.friction = Real(scene.wallFriction);
     // Ten times the free-fall speed: splashes reach two or three times it, a blow-up far more.
     p.maxSpeed = Real(scene.maxSpeed.value_or(10.0 * report.expectedSpeed));
+    if (scene.maxSpeed && *scene.maxSpeed < 2.0 * report.expectedSpeed) {
+        report.warnings.push_back(
+            "limits.maxSpeed " + fmt(*scene.maxSpeed) + " m/s is under twice the expected " +
+            fmt(report.expectedSpeed) +
+            " m/s: splashes reach that, so the run will likely stop as a false blow-up; leave it "
+            "unset (10x) or use >= " +
+            fmt(3.0 * report.expectedSpeed));
+    }
     say("blow-up bound: speed > " + fmt(p.maxSpeed) + " m/s, NaN, or a particle outside the box");
 
     try {
@@ -258,6 +332,30 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     }
     for (const SphereShape& s : scene.obstacleSpheres) {
         setup.obstacleSpheres.push_back({Vec3(s.center), Real(s.radius)});
+    }
+    if (scene.walls == WallModel::Particles) {
+        setup.boundary = buildBoundary(sampleBoundary(scene, d, h), scene.container, h,
+                                       scene.restDensity, mass / scene.restDensity);
+        p.walls = WallKind::Particles;
+        p.wallViscosity = Real(scene.wallFriction * viscosity);
+        double psiMin = 1e300, psiMax = 0;
+        for (const Real4& b : setup.boundary.pos) {
+            psiMin = std::min(psiMin, double(b.w));
+            psiMax = std::max(psiMax, double(b.w));
+        }
+        say("walls: " + std::to_string(setup.boundary.size()) +
+            " boundary particles (Akinci et al. 2012) at spacing d in " +
+            std::to_string(boundaryLayers(h, d)) +
+            " layer(s) from d/2 behind each wall and obstacle surface; volume psi = rho0 / sum W "
+            "over boundary neighbours, capped at a full neighbourhood's, " +
+            fmt(psiMin / (scene.restDensity * d * d * d)) + " to " +
+            fmt(psiMax / (scene.restDensity * d * d * d)) +
+            " x rho0 d^3; they add to density and push by the fluid's own pressure" +
+            (scene.wallFriction > 0 ? "; friction mu = " + fmt(scene.wallFriction * viscosity)
+                                    : "; free slip (walls.friction 0)"));
+    } else {
+        say("walls: the paper's simple collision response (restitution " +
+            fmt(scene.wallRestitution) + ", friction " + fmt(scene.wallFriction) + ")");
     }
     say(std::to_string(setup.particleCount()) + " particles, grid " +
         std::to_string(setup.grid.dims[0]) + " x " + std::to_string(setup.grid.dims[1]) + " x " +

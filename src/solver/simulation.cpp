@@ -111,8 +111,7 @@ std::unique_ptr<Simulation> makeSimulation(Backend backend, NeighbourMode mode,
 
 std::string describeFault(const FaultRecord& fault, const SphParams& params) {
     std::ostringstream msg;
-    msg << "the simulation blew up at step " << fault.step
-        << " (t = " << fault.step * params.timeStep << " s): ";
+    msg << "the simulation blew up at step " << fault.step << " (t = " << fault.time << " s): ";
     switch (FaultCode(fault.code)) {
         case FaultCode::NotFinite:
             msg << "a particle's position or velocity became NaN or infinite";

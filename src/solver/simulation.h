@@ -9,6 +9,7 @@
 #include "core/backend.h"
 #include "core/stage_timer.h"
 #include "grid/cell_id.h"
+#include "physics/boundary.h"
 #include "physics/sph_params.h"
 #include "physics/stages.h"
 #include "scene/seeding.h"
@@ -32,6 +33,7 @@ struct SimulationSetup {
     GridSpec grid;
     std::vector<ObstacleBox> obstacleBoxes;
     std::vector<ObstacleSphere> obstacleSpheres;
+    BoundaryParticles boundary;  // walls.model "particles": static wall particles and their grid
     HostParticles particles;
     SceneSeeds seeds;  // instead of particles: seeded by the simulation itself (scene/seeding.h)
 
@@ -47,8 +49,11 @@ class Simulation {
    public:
     virtual ~Simulation() = default;
 
-    // Advances `steps` time steps of params().timeStep. Does not synchronize with the host.
+    // Advances `steps` time steps (adaptive or fixed dt). Does not synchronize with the host.
     virtual void advance(int steps) = 0;
+    // Advances until the simulated time is exactly `time` (the last step cut to land on it),
+    // reading the device clock back once per batch of steps.
+    virtual void advanceTo(double time) = 0;
     // Computes density and pressure of the current state without stepping (for frame 0).
     virtual void computeDensity() = 0;
     // Copies the particles back, in their original (initial) order.
@@ -77,7 +82,8 @@ class Simulation {
     virtual const SphParams& params() const = 0;
     virtual Index particleCount() const = 0;
     virtual long long stepCount() const = 0;
-    double time() const { return double(stepCount()) * double(params().timeStep); }
+    // Simulated time, s (read back from the device clock).
+    virtual double time() const = 0;
 };
 
 // Creates a simulation on a backend; throws SimulationError if the particles do not fit in memory.

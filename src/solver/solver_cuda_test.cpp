@@ -55,6 +55,69 @@ TEST_P(CudaModes, GridAndBruteForceAgree) {
     EXPECT_LT(maxPositionDifference(a, b), 1e-4 * report.spacing);
 }
 
+// The device-side time step and Tait's equation: the GPU picks the same steps (to rounding) and
+// lands on the same frame times as the CPU.
+TEST_P(CudaModes, TaitAndAdaptiveStepsAgreeWithCpu) {
+    SKIP_WITHOUT_GPU();
+    Scene scene = smallDamBreak(4000);
+    scene.eos = EquationOfState::Tait;
+    SetupReport report;
+    auto cpu = start(scene, Backend::Cpu, GetParam(), &report);
+    auto gpu = start(scene, Backend::Cuda, GetParam());
+    ASSERT_TRUE(gpu->params().adaptiveTimeStep);
+    for (int frame = 1; frame <= 4; ++frame) {
+        cpu->advanceTo(frame / 60.0);
+        gpu->advanceTo(frame / 60.0);
+        EXPECT_EQ(gpu->time(), frame / 60.0);
+    }
+    ASSERT_EQ(gpu->fault().code, 0);
+    EXPECT_NEAR(double(gpu->stepCount()), double(cpu->stepCount()), 0.02 * cpu->stepCount() + 1);
+    HostParticles a, b;
+    cpu->download(a);
+    gpu->download(b);
+    double sumSquares = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        sumSquares += lengthSquared(Vec3d(a.x[i] - b.x[i], a.y[i] - b.y[i], a.z[i] - b.z[i]));
+    }
+    EXPECT_LT(std::sqrt(sumSquares / double(a.size())), 0.002 * report.spacing);
+    EXPECT_NEAR(meanDensity(a), meanDensity(b), 1e-4 * scene.restDensity);
+    EXPECT_GT(maxSpeed(b), 0.3);
+}
+
+// Walls of boundary particles (Akinci) on the GPU: the same density at the walls and the same
+// flow as on the CPU, with an obstacle box and sphere in the way.
+TEST_P(CudaModes, BoundaryParticlesAgreeWithCpu) {
+    SKIP_WITHOUT_GPU();
+    Scene scene = smallDamBreak(4000);
+    scene.walls = WallModel::Particles;
+    scene.obstacleBoxes.push_back({Vec3d(0.35, 0, 0.05), Vec3d(0.4, 0.08, 0.15)});
+    scene.obstacleSpheres.push_back({Vec3d(0.5, 0.05, 0.1), 0.04});
+    SetupReport report;
+    auto cpu = start(scene, Backend::Cpu, GetParam(), &report);
+    auto gpu = start(scene, Backend::Cuda, GetParam());
+    HostParticles a0, b0;
+    cpu->computeDensity();
+    gpu->computeDensity();
+    cpu->download(a0);
+    gpu->download(b0);
+    for (std::size_t i = 0; i < a0.size(); ++i) {
+        ASSERT_NEAR(a0.rho[i], b0.rho[i], 1e-3 * scene.restDensity) << "particle " << i;
+    }
+    cpu->advanceTo(0.1);
+    gpu->advanceTo(0.1);
+    ASSERT_EQ(gpu->fault().code, 0);
+    HostParticles a, b;
+    cpu->download(a);
+    gpu->download(b);
+    double sumSquares = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        sumSquares += lengthSquared(Vec3d(a.x[i] - b.x[i], a.y[i] - b.y[i], a.z[i] - b.z[i]));
+    }
+    EXPECT_LT(std::sqrt(sumSquares / double(a.size())), 0.005 * report.spacing);
+    EXPECT_NEAR(meanDensity(a), meanDensity(b), 1e-4 * scene.restDensity);
+    EXPECT_GT(maxSpeed(b), 0.3);
+}
+
 INSTANTIATE_TEST_SUITE_P(Tables, CudaModes,
                          ::testing::Values(NeighbourMode::Grid, NeighbourMode::Dense));
 

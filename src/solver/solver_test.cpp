@@ -94,9 +94,12 @@ TEST(Solver, ConservesMomentumInFreeSpace) {
     EXPECT_GT(velocityChange / double(after.size()), 0.05);
 }
 
-TEST(Solver, FluidAtRestInABoxStaysAtRest) {
+class RestState : public ::testing::TestWithParam<WallModel> {};
+
+TEST_P(RestState, FluidAtRestInABoxStaysAtRest) {
     // A tank filled to 0.15 m: after the first pressure waves settle the fluid sits still,
-    // near rest density, where it started.
+    // near rest density, where it started; with the paper's simple walls and with boundary
+    // particles.
     Scene scene = parseScene(R"({
         "container": {"min": [0, 0, 0], "max": [0.2, 0.3, 0.2]},
         "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.15, 0.2]}],
@@ -104,12 +107,18 @@ TEST(Solver, FluidAtRestInABoxStaysAtRest) {
         "time": {"duration": 1.0, "frameRate": 30}
     })",
                              "<test tank>");
+    scene.walls = GetParam();
     SetupReport report;
     auto sim = start(scene, Backend::Cpu, NeighbourMode::Grid, &report);
     // The lattice start settles first (the layers at the walls and floor lack neighbours and
     // compress); from then on the fluid must stay where it is.
-    HostParticles initial = stateAfter(*sim, report.stepsPerFrame * 15);
-    HostParticles settled = stateAfter(*sim, report.stepsPerFrame * 15);
+    // (Steps are adaptive, so by time: a second to settle, then half a second at rest. The
+    // symmetric pressure force settles the lattice start more slowly than eq. 4 did.)
+    HostParticles initial, settled;
+    sim->advanceTo(1.0);
+    sim->download(initial);
+    sim->advanceTo(1.5);
+    sim->download(settled);
     // A few particles rattle against the walls of the simple collision response, so the checks
     // are on the bulk: RMS and 99th-percentile speed, 95th-percentile displacement.
     const double freeFall = std::sqrt(2 * 9.81 * 0.15);
@@ -131,6 +140,9 @@ TEST(Solver, FluidAtRestInABoxStaysAtRest) {
     EXPECT_NEAR(meanDensity(settled), scene.restDensity, 0.01 * scene.restDensity);
     EXPECT_EQ(sim->fault().code, 0);
 }
+
+INSTANTIATE_TEST_SUITE_P(Walls, RestState,
+                         ::testing::Values(WallModel::Simple, WallModel::Particles));
 
 TEST(Solver, BlowUpIsDetectedAndDiagnosed) {
     // A time step far past the CFL limit for this stiffness.

@@ -51,35 +51,97 @@ class SphSolver final : public Simulation {
             sortedVel_.resize(n_);
             sortedId_.resize(n_);
         }
+        const BoundaryParticles& walls = setup.boundary;
+        if (walls.size() > 0) {
+            exec_.upload(boundaryPos_, walls.pos.data(), walls.pos.size());
+            exec_.upload(boundaryStart_, walls.cellStart.data(), walls.cellStart.size());
+            exec_.upload(boundaryNear_, walls.near.data(), walls.near.size());
+            boundary_.origin = walls.origin;
+            boundary_.invCellSize = Real(1) / walls.cellSize;
+            boundary_.nx = walls.dims[0];
+            boundary_.ny = walls.dims[1];
+            boundary_.nz = walls.dims[2];
+            boundary_.count = Index(walls.size());
+        }
         exec_.upload(boxes_, setup.obstacleBoxes.data(), setup.obstacleBoxes.size());
         exec_.upload(spheres_, setup.obstacleSpheres.data(), setup.obstacleSpheres.size());
-        FaultRecord none{0, 0, 0, 0.0f};
+        FaultRecord none{0, 0, 0, 0.0f, 0.0f};
         exec_.upload(fault_, &none, 1);
-        int zero = 0;
-        exec_.upload(stepCounter_, &zero, 1);
+        // The first step's dt sees the initial speeds and gravity (the lattice starts in balance).
+        double maxSpeed2 = 0;
+        const HostParticles& host = setup.particles;
+        for (std::size_t i = 0; i < host.size(); ++i) {
+            maxSpeed2 = std::max(maxSpeed2, double(host.vx[i]) * host.vx[i] +
+                                                double(host.vy[i]) * host.vy[i] +
+                                                double(host.vz[i]) * host.vz[i]);
+        }
+        for (const SeedLattice& lattice : setup.seeds.lattices) {  // particles seeded here
+            maxSpeed2 = std::max(maxSpeed2, lengthSquared(lattice.velocity));
+        }
+        StepClock clock{};
+        clock.time = 0;
+        clock.target = kNoTarget;
+        clock.maxSpeed2 = floatBits(float(maxSpeed2));
+        clock.maxAccel2 = floatBits(float(lengthSquared(params_.gravity)));
+        exec_.upload(clock_, &clock, 1);
+        typicalStep_ = double(params_.timeStep);
+    }
+
+    // Steps until the clock reaches `target`: batches of the steps the last batches' mean dt
+    // predicts, the clock read back after each (one host round trip per batch, not per step).
+    // Steps past the target inside a batch are no-ops that cost only the grid build.
+    void advanceTo(double target) override {
+        StepClock clock = exec_.readOne(clock_, 0);
+        clock.target = target;
+        exec_.writeOne(clock_, 0, clock);
+        targetSet_ = true;
+        while (clock.time < target) {
+            const double wanted = std::ceil((target - clock.time) / typicalStep_ - 1e-6);
+            const int batch = int(std::clamp(wanted, 1.0, 1e6));
+            const double before = clock.time;
+            const int stepsBefore = clock.step;
+            advanceSteps(batch);
+            clock = exec_.readOne(clock_, 0);
+            if (exec_.readOne(fault_, 0).code != 0 || !(clock.time > before)) {
+                break;  // blown up (reported by fault()), or a step that cannot advance
+            }
+            if (!clock.landing || clock.step - stepsBefore > 1) {
+                typicalStep_ = (clock.time - before) / double(clock.step - stepsBefore);
+            }
+        }
     }
 
     void advance(int steps) override {
+        if (targetSet_) {  // plain steps: no output time to stop on
+            StepClock clock = exec_.readOne(clock_, 0);
+            clock.target = kNoTarget;
+            exec_.writeOne(clock_, 0, clock);
+            targetSet_ = false;
+        }
+        advanceSteps(steps);
+    }
+
+    void advanceSteps(int steps) {
         if constexpr (Exec::isDevice) {
             // With no host round trip inside a step, a pair of steps replays as one CUDA graph.
             if (mode_ != NeighbourMode::Grid && !exec_.timing && steps >= 4) {
                 if (!graph_.ready()) {
                     step();  // allocates every buffer: a capture cannot allocate
                     --steps;
-                    graphParity_ = int(steps_ & 1);
+                    graphParity_ = int(calls_ & 1);
                     exec_.capture(graph_, [&] {
                         step();
                         step();
                     });
-                    steps_ -= 2;  // capturing does not run the steps
+                    calls_ -= 2;  // capturing does not run the steps
                 }
-                if (int(steps_ & 1) != graphParity_) {  // the graph holds buffer swaps of a pair
+                if (int(calls_ & 1) != graphParity_) {  // the graph holds buffer swaps of a pair
                     step();
                     --steps;
                 }
                 for (; steps >= 2; steps -= 2) {
                     exec_.launch(graph_);
-                    steps_ += 2;
+                    calls_ += 2;
                 }
             }
         }
@@ -103,27 +165,32 @@ class SphSolver final : public Simulation {
         }
     }
 
-    // One step, paper §5-6: separate stages launched in sequence.
+    // One step, paper §5-6: separate stages launched in sequence, bracketed by the one-thread
+    // stages that choose dt and move the clock on (physics/time_step.h).
     void step() {
         switch (mode_) {
             case NeighbourMode::Grid:
                 buildGrid();
-                computeDensityPressure(sparse_.view());
+                beginStep();
+                computeDensityPressure(sparse_.view(), clock_.data());
                 computeAcceleration(sparse_.view());
                 break;
             case NeighbourMode::Dense:
                 buildGrid();
-                computeDensityPressure(denseView());
+                beginStep();
+                computeDensityPressure(denseView(), clock_.data());
                 accelerateAndIntegrate(denseView());
                 break;
             default:
-                computeDensityPressure(BruteNeighbours{n_});
+                beginStep();
+                computeDensityPressure(BruteNeighbours{n_}, clock_.data());
                 computeAcceleration(BruteNeighbours{n_});
         }
         if (mode_ != NeighbourMode::Dense) {
             integrate();
         }
-        ++steps_;
+        endStep();
+        ++calls_;
         if (exec_.timing) {
             exec_.collectTimes(times_);
         }
@@ -211,12 +278,27 @@ class SphSolver final : public Simulation {
         id_.swap(sortedId_);
     }
 
+    void beginStep() {
+        StepClock* clock = clock_.data();
+        const SphParams params = params_;
+        exec_.forEach(1, [=] WEIR_HD(Index) { weir::beginStep(*clock, params); });
+    }
+    void endStep() {
+        StepClock* clock = clock_.data();
+        exec_.forEach(1, [=] WEIR_HD(Index) { weir::endStep(*clock); });
+    }
+
+    // Density of every particle; skipped in a no-op step when `clock` is given.
     template <class Neighbours>
-    void computeDensityPressure(const Neighbours& nb) {
+    void computeDensityPressure(const Neighbours& nb, const StepClock* clock = nullptr) {
         exec_.stageBegin("density");
         const ParticleView pv = view();
         const SphParams params = params_;
-        exec_.forEach(n_, [=] WEIR_HD(Index i) { densityPressureAt(i, pv, nb, params); });
+        exec_.forEach(n_, [=] WEIR_HD(Index i) {
+            if (clock == nullptr || clock->dt != Real(0)) {
+                densityPressureAt(i, pv, nb, params);
+            }
+        });
         exec_.stageEnd("density");
     }
 
@@ -225,7 +307,12 @@ class SphSolver final : public Simulation {
         exec_.stageBegin("force");
         const ParticleView pv = view();
         const SphParams params = params_;
-        exec_.forEach(n_, [=] WEIR_HD(Index i) { accelerationAt(i, pv, nb, params); });
+        const StepClock* clock = clock_.data();
+        exec_.forEach(n_, [=] WEIR_HD(Index i) {
+            if (clock->dt != Real(0)) {
+                accelerationAt(i, pv, nb, params);
+            }
+        });
         exec_.stageEnd("force");
     }
 
@@ -238,12 +325,11 @@ class SphSolver final : public Simulation {
         const ObstacleView obstacles{boxes_.data(), int(boxes_.size()), spheres_.data(),
                                      int(spheres_.size())};
         FaultRecord* fault = fault_.data();
-        int* counter = stepCounter_.data();
+        StepClock* clock = clock_.data();
         Real4 *newPos = sortedPos_.data(), *newVel = sortedVel_.data();
         exec_.forEach(n_, [=] WEIR_HD(Index i) {
-            accelerateAndIntegrateAt(i, pv, nb, params, obstacles, fault, *counter, newPos, newVel);
+            accelerateAndIntegrateAt(i, pv, nb, params, obstacles, fault, clock, newPos, newVel);
         });
-        exec_.forEach(1, [=] WEIR_HD(Index) { ++*counter; });
         pos_.swap(sortedPos_);
         vel_.swap(sortedVel_);
         exec_.stageEnd("force");
@@ -256,15 +342,23 @@ class SphSolver final : public Simulation {
         const ObstacleView obstacles{boxes_.data(), int(boxes_.size()), spheres_.data(),
                                      int(spheres_.size())};
         FaultRecord* fault = fault_.data();
-        int* counter = stepCounter_.data();
-        exec_.forEach(
-            n_, [=] WEIR_HD(Index i) { integrateAt(i, pv, params, obstacles, fault, *counter); });
-        // The step number lives on the device, so a replayed graph records the right one.
-        exec_.forEach(1, [=] WEIR_HD(Index) { ++*counter; });
+        StepClock* clock = clock_.data();
+        // The step number and dt live on the device, so a replayed graph uses the right ones.
+        exec_.forEach(n_, [=] WEIR_HD(Index i) {
+            if (clock->dt != Real(0)) {
+                integrateAt(i, pv, params, obstacles, fault, clock);
+            }
+        });
         exec_.stageEnd("integrate");
     }
 
-    ParticleView view() { return {pos_.data(), vel_.data(), acc_.data(), n_}; }
+    ParticleView view() {
+        BoundaryView walls = boundary_;
+        walls.pos = boundaryPos_.data();
+        walls.cellStart = boundaryStart_.data();
+        walls.near = boundaryNear_.data();
+        return {pos_.data(), vel_.data(), acc_.data(), n_, walls};
+    }
 
     void download(HostParticles& out) override {
         out.resize(n_);
@@ -300,7 +394,8 @@ class SphSolver final : public Simulation {
         std::size_t bytes =
             (pos_.size() + vel_.size() + acc_.size() + sortedPos_.size() + sortedVel_.size()) *
                 sizeof(Real4) +
-            (id_.size() + sortedId_.size()) * sizeof(Index);
+            (id_.size() + sortedId_.size() + boundaryStart_.size()) * sizeof(Index) +
+            boundaryPos_.size() * sizeof(Real4) + boundaryNear_.size();
         return bytes + (mode_ == NeighbourMode::Grid ? sparse_.bytesHeld() : 0) +
                (mode_ == NeighbourMode::Dense ? dense_.bytesHeld() : 0);
     }
@@ -309,7 +404,8 @@ class SphSolver final : public Simulation {
     }
     const SphParams& params() const override { return params_; }
     Index particleCount() const override { return n_; }
-    long long stepCount() const override { return steps_; }
+    long long stepCount() const override { return exec_.readOne(clock_, 0).step; }
+    double time() const override { return exec_.readOne(clock_, 0).time; }
 
     // Creates the particles of `seeds` on this backend, in the order of the host's seeding: per
     // lattice, in chunks, a keep flag per point, a prefix sum of the flags, and each kept point
@@ -372,19 +468,26 @@ class SphSolver final : public Simulation {
         return std::max(1, denseCellsPerRadius(setup.grid, setup.particleCount()));
     }
 
-    Exec exec_;
+    static constexpr double kNoTarget = 1e300;
+    mutable Exec exec_;  // mutable: reading the device clock back is not a change
     NeighbourMode mode_;
     SphParams params_;
     NeighbourGrid<Exec> sparse_;
     DenseGrid<Exec> dense_;
     Index n_ = 0;
-    long long steps_ = 0;
+    long long calls_ = 0;     // step() calls, no-op steps included (graph parity)
+    double typicalStep_ = 0;  // mean dt of the last batch, to size the next
+    bool targetSet_ = false;
     Buffer<Real4> pos_, vel_, acc_, sortedPos_, sortedVel_;
     Buffer<Index> id_, sortedId_;
     Buffer<ObstacleBox> boxes_;
     Buffer<ObstacleSphere> spheres_;
     Buffer<FaultRecord> fault_;
-    Buffer<int> stepCounter_;
+    Buffer<StepClock> clock_;
+    BoundaryView boundary_;  // geometry of the static wall grid; pointers filled by view()
+    Buffer<Real4> boundaryPos_;
+    Buffer<Index> boundaryStart_;
+    Buffer<unsigned char> boundaryNear_;
     typename Exec::Graph graph_;
     int graphParity_ = 0;
     StageTimes times_;

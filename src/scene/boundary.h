@@ -1,0 +1,34 @@
+// Boundary particles for the container walls and the obstacles (physics/boundary.h): sampling,
+// Akinci's volumes psi and the static grid, built once on the host at set-up.
+#pragma once
+
+#include <vector>
+
+#include "physics/boundary.h"
+#include "scene/scene.h"
+
+namespace weir {
+
+// Samples the walls and obstacles at spacing d: the container's faces d/2 outside its walls and
+// each obstacle's surface d/2 inside it, so that the first fluid layer (seeded d/2 from a wall)
+// sits one spacing from the boundary layer, as in the fluid lattice; and further layers d apart
+// as far as a fluid particle at the wall can see (boundaryLayers: 1 at h = 2d, 2 at h = 3d).
+// Points closer than d/2 to an earlier one are dropped (box edges, shared mesh edges).
+std::vector<Vec3d> sampleBoundary(const Scene& scene, double d, double h);
+int boundaryLayers(double h, double d);
+
+// psi_b = rho0 / sum_k W_bk for each point (Akinci et al. 2012, the boundary's own density sum),
+// capped at rho0 * fullVolume, the volume of a particle with a full neighbourhood
+// (d^3 / lattice sum of poly6, as the fluid's mass). The cap matters at the layer facing the
+// fluid: its own sum misses the half-space that the fluid fills, so uncapped it weighs 1.5 to 2
+// times a fluid particle and the first fluid layer starts that much overdense; measured, it
+// throws a tank at rest off its floor. Deeper layers and dense samplings (curved obstacles,
+// meshes) keep Akinci's value. The points are sorted into a grid of h-wide cells covering the
+// container and one cell of margin.
+BoundaryParticles buildBoundary(const std::vector<Vec3d>& points, const Box& container, double h,
+                                double restDensity, double fullVolume);
+
+// Whether p lies inside the closed triangle mesh (ray parity along +x).
+bool insideMesh(const MeshObstacle& mesh, const Vec3d& p);
+
+}  // namespace weir

@@ -1,0 +1,40 @@
+// The per-frame density deviation from rest density that weir reports: how compressible the
+// weakly compressible fluid really was. Only compression counts: particles at the free surface
+// lack neighbours and read light by construction, which is not an error of the solver.
+#pragma once
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "solver/particles.h"
+
+namespace weir {
+
+struct DensityDeviation {
+    double max = 0;   // max over particles of (rho - rho0) / rho0, >= 0
+    double mean = 0;  // mean over particles of max(0, rho - rho0) / rho0
+
+    std::string text() const {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "density +%.2f%% max, +%.3f%% mean", 100 * max, 100 * mean);
+        return buf;
+    }
+};
+
+inline DensityDeviation densityDeviation(const HostParticles& p, double restDensity) {
+    DensityDeviation d;
+    if (p.size() == 0) {
+        return d;
+    }
+    double sum = 0;
+    for (Real rho : p.rho) {
+        const double excess = std::max(0.0, (double(rho) - restDensity) / restDensity);
+        d.max = std::max(d.max, excess);
+        sum += excess;
+    }
+    d.mean = sum / double(p.size());
+    return d;
+}
+
+}  // namespace weir

@@ -1,0 +1,71 @@
+// The plot script that `weir validate` writes beside its results and runs with python3 (optional:
+// without matplotlib the plots are skipped with a message). Embedded so that it works from
+// anywhere.
+#pragma once
+
+namespace weir {
+
+inline constexpr const char* kValidationPlotScript = R"PY(#!/usr/bin/env python3
+"""Plots weir validate results: hydrostatic pressure profile and Martin & Moyce surge front.
+
+Usage: python3 plot.py DIR   (reads DIR/*.csv, writes DIR/hydrostatic.png, DIR/dam_break.png)
+"""
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def rows(path):
+    with open(path) as f:
+        return [r for r in csv.DictReader(line for line in f if not line.startswith("#"))]
+
+
+def main(d):
+    h = rows(os.path.join(d, "hydrostatic.csv"))
+    y = [float(r["y"]) for r in h]
+    p = [float(r["pressure"]) for r in h]
+    ref = [float(r["reference"]) for r in h]
+    tol = [float(r["tolerance"]) for r in h]
+    fig, ax = plt.subplots(figsize=(5, 5))
+    ax.fill_betweenx(y, [a - t for a, t in zip(ref, tol)], [a + t for a, t in zip(ref, tol)],
+                     color="C0", alpha=0.2, label="tolerance")
+    ax.plot(ref, y, "C0-", label="rho0 g depth")
+    ax.plot(p, y, "C3o", label="weir (layer means)")
+    ax.set_xlabel("pressure [Pa]")
+    ax.set_ylabel("height above floor [m]")
+    ax.set_title("Hydrostatic tank")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(d, "hydrostatic.png"), dpi=120)
+
+    sim = rows(os.path.join(d, "dam_break.csv"))
+    ref = rows(os.path.join(d, "martin_moyce_1952.csv"))
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    rt = [float(r["T"]) for r in ref]
+    ax.fill_between(rt, [float(r["band_low"]) for r in ref], [float(r["band_high"]) for r in ref],
+                    color="C0", alpha=0.2, label="tolerance band")
+    ax.plot(rt, [float(r["Z"]) for r in ref], "C0s", label="Martin & Moyce 1952, n^2 = 2")
+    ax.plot([0] + [float(r["T"]) for r in sim], [1] + [float(r["Z"]) for r in sim], "C3-",
+            label="weir")
+    ax.set_xlim(0, max(float(r["T"]) for r in sim) + 0.5)
+    ax.set_ylim(0, max(float(r["Z"]) for r in sim) + 1.5)
+    ax.set_xlabel("T = t sqrt(2 g / a)")
+    ax.set_ylabel("Z = z / a")
+    ax.set_title("Dam break: surge front")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(d, "dam_break.png"), dpi=120)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    main(sys.argv[1])
+)PY";
+
+}  // namespace weir
