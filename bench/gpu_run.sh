@@ -4,7 +4,8 @@
 # ./gpu-out). PARTS picks what runs (default: all of "build test runs bench reference"; "huge"
 # adds the largest dam break, HUGE particles, 1B by default), so a long session can be split over
 # calls that reuse the build.
-# Usage: PARTS="build test" bash bench/gpu_run.sh [sizes] [reference-dir]
+# Usage: WEIR_COMMIT=<commit, named on the machine that sends the tree: the copy's .git there can
+#        be stale> PARTS="build test" bash bench/gpu_run.sh [sizes] [reference-dir]
 set -uo pipefail
 out=$(realpath -m "${OUT:-gpu-out}")
 sizes=${1:-10k,50k,100k,1M,10M}
