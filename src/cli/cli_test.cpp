@@ -357,10 +357,10 @@ TEST_F(Cli, ExplainPrintsTheDerivation) {
         weir("run tiny.json" + std::string(kCpu) + " --frames 0 --explain --out explained");
     ASSERT_EQ(explained.exitCode, 0) << explained.output;
     for (const char* line :
-         {"spacing d = 0.01 m (scene)", "smoothing radius h = 0.02 m (2 d)", "particle mass m = ",
-          "expected top speed", "stiffness k = ", "viscosity mu = ", "time step ",
-          "per frame at the expected speed; CFL", "0.4 h / (c + max|v|)", "blow-up bound",
-          "960 particles, grid 10 x 10 x 5 cells"}) {
+         {"spacing d = 0.01 m (scene)", "smoothing radius h = 0.02 m (2 d)",
+          "particle mass m = ", "expected top speed",
+          "stiffness k = ", "viscosity mu = ", "time step ", "per frame at the expected speed; CFL",
+          "0.4 h / (c + max|v|)", "blow-up bound", "960 particles, grid 10 x 10 x 5 cells"}) {
         EXPECT_TRUE(contains(explained.output, line));
     }
     // --frames 0 writes the initial frame only.

@@ -11,9 +11,9 @@ namespace weir {
 
 // Exit codes shared by all commands.
 constexpr int kExitOk = 0;
-constexpr int kExitError = 1;     // bad scene, I/O failure, not enough memory
-constexpr int kExitUsage = 2;     // bad command-line arguments
-constexpr int kExitBlowUp = 3;    // the simulation blew up; frames already written stay
+constexpr int kExitError = 1;             // bad scene, I/O failure, not enough memory
+constexpr int kExitUsage = 2;             // bad command-line arguments
+constexpr int kExitBlowUp = 3;            // the simulation blew up; frames already written stay
 constexpr int kExitValidationFailed = 4;  // weir validate: a check missed its tolerance
 
 struct RunOptions {

@@ -218,16 +218,19 @@ int main(int argc, char** argv) {
     validateCmd->add_option("--backend", validate.backend, "auto (GPU if present), cuda or cpu")
         ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
         ->capture_default_str();
-    validateCmd->add_option("--tank-resolution", validate.tankResolution,
-                            "Particles over the tank's water depth")
+    validateCmd
+        ->add_option("--tank-resolution", validate.tankResolution,
+                     "Particles over the tank's water depth")
         ->check(CLI::Range(6, 400))
         ->capture_default_str();
-    validateCmd->add_option("--column-resolution", validate.columnResolution,
-                            "Particles across the dam-break column's width")
+    validateCmd
+        ->add_option("--column-resolution", validate.columnResolution,
+                     "Particles across the dam-break column's width")
         ->check(CLI::Range(6, 400))
         ->capture_default_str();
-    validateCmd->add_option("--end-time", validate.damEndT,
-                            "Dam break end, in T = t sqrt(2 g / a) (data reach 9.2)")
+    validateCmd
+        ->add_option("--end-time", validate.damEndT,
+                     "Dam break end, in T = t sqrt(2 g / a) (data reach 9.2)")
         ->check(CLI::Range(1.0, 9.3))
         ->capture_default_str();
     validateCmd->add_option("--out,-o", validate.outDir, "Directory for results and plots")

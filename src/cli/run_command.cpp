@@ -6,9 +6,9 @@
 #include "cli/progress.h"
 #include "core/check.h"
 #include "io/frame_writer.h"
-#include "solver/density_deviation.h"
 #include "scene/scene.h"
 #include "scene/setup.h"
+#include "solver/density_deviation.h"
 
 namespace weir {
 
@@ -98,8 +98,8 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             observer->finish();
         }
         double seconds = progress.elapsedSeconds();
-        std::cerr << "weir: done, " << frames + 1 << " frames, " << sim->stepCount()
-                  << " steps in " << formatDuration(seconds) << " ("
+        std::cerr << "weir: done, " << frames + 1 << " frames, " << sim->stepCount() << " steps in "
+                  << formatDuration(seconds) << " ("
                   << (seconds > 0 ? double(sim->stepCount()) / seconds : 0.0)
                   << " steps/s); worst frame: " << worst.text() << "\n";
         return kExitOk;

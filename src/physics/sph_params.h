@@ -20,17 +20,17 @@ enum class WallKind : int { Simple = 0, Particles = 1 };
 
 struct SphParams {
     KernelCoefficients kernel;
-    Real mass = 0;                      // per particle, kg
-    Real restDensity = 0;               // rho0, kg/m^3
-    Real invRestDensity = 0;            // 1 / rho0
+    Real mass = 0;            // per particle, kg
+    Real restDensity = 0;     // rho0, kg/m^3
+    Real invRestDensity = 0;  // 1 / rho0
     EosKind eos = EosKind::Linear;
     PressureForm pressureForce = PressureForm::Symmetric;
-    Real stiffness = 0;                 // k of eq. 3, m^2/s^2 (= c^2)
-    Real taitB = 0;                     // B of Tait's equation, Pa (= rho0 c^2 / 7)
-    Real negativePressureScale = 0;     // share of negative pressure kept: 0 clamps, 1 keeps
-    Real viscosity = 0;                 // mu of eq. 5, Pa s
-    Vec3 gravity;                       // m/s^2
-    Real timeStep = 0;                  // s: the fixed step, or the first adaptive one
+    Real stiffness = 0;              // k of eq. 3, m^2/s^2 (= c^2)
+    Real taitB = 0;                  // B of Tait's equation, Pa (= rho0 c^2 / 7)
+    Real negativePressureScale = 0;  // share of negative pressure kept: 0 clamps, 1 keeps
+    Real viscosity = 0;              // mu of eq. 5, Pa s
+    Vec3 gravity;                    // m/s^2
+    Real timeStep = 0;               // s: the fixed step, or the first adaptive one
     // Adaptive step (physics/time_step.h), recomputed every step on the device.
     bool adaptiveTimeStep = false;
     Real speedOfSound = 0;     // c, m/s
@@ -45,7 +45,7 @@ struct SphParams {
     Real friction = 0;     // share of tangential speed removed on contact
     WallKind walls = WallKind::Simple;
     Real wallViscosity = 0;  // mu against boundary particles, Pa s (0: free slip)
-    Real maxSpeed = 0;     // blow-up bound, m/s
+    Real maxSpeed = 0;       // blow-up bound, m/s
 };
 
 }  // namespace weir

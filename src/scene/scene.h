@@ -1,8 +1,8 @@
 // The scene: what the user asks for (geometry, fluid, resolution, timing), as read from JSON.
 #pragma once
 
-#include <cstdint>
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -45,7 +45,7 @@ struct MeshObstacle {
     std::string file;  // as written in the scene, resolved against the scene file's folder
     double scale = 1;
     Vec3d translate;
-    std::vector<Vec3d> vertices;             // placed
+    std::vector<Vec3d> vertices;  // placed
     std::vector<std::array<int, 3>> triangles;
 };
 
@@ -80,7 +80,7 @@ struct Scene {
     std::string preset;           // "preset": "water" | "oil" | "honey" ("" none: water-like)
     double restDensity = 1000.0;  // "restDensity", kg/m^3, > 0 (default: the preset's)
     std::optional<double>
-        viscosity;  // "viscosity", dynamic mu of eq. 5, Pa s, >= 0; unset: derived
+        viscosity;                 // "viscosity", dynamic mu of eq. 5, Pa s, >= 0; unset: derived
     double physicalViscosity = 0;  // the preset's mu, added to the derived artificial one
     EquationOfState eos = EquationOfState::Linear;  // "eos": "linear" (eq. 3) | "tait"
     // "pressureForce": "symmetric" (Monaghan: tends to grad p) | "paper" (eq. 4: grad p / 2)

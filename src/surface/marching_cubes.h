@@ -43,7 +43,9 @@ struct SampledFieldView {
     }
 };
 
-WEIR_HD inline int bitCount3(int mask) { return (mask & 1) + ((mask >> 1) & 1) + ((mask >> 2) & 1); }
+WEIR_HD inline int bitCount3(int mask) {
+    return (mask & 1) + ((mask >> 1) & 1) + ((mask >> 2) & 1);
+}
 
 // Bit a set where the edge from sample (x, y, z) along axis a is cut.
 WEIR_HD inline int cutEdgesOfSample(const SampledFieldView& f, int x, int y, int z) {
@@ -125,7 +127,8 @@ struct MarchingCubesTableView {
 WEIR_HD inline Index edgeVertexIndex(const SampledFieldView& f, const Index* vertexEnd, int x,
                                      int y, int z, int axis) {
     const int mask = cutEdgesOfSample(f, x, y, z);
-    return vertexEnd[f.sampleIndex(x, y, z)] - bitCount3(mask) + bitCount3(mask & ((1 << axis) - 1));
+    return vertexEnd[f.sampleIndex(x, y, z)] - bitCount3(mask) +
+           bitCount3(mask & ((1 << axis) - 1));
 }
 
 // Writes the triangles of cell (x, y, z) as vertex indices, three per triangle, to out.
@@ -137,9 +140,9 @@ WEIR_HD inline void cellTriangles(const SampledFieldView& f, const MarchingCubes
     for (int k = 0; k < 3 * count; ++k) {
         const int edge = edges[k];
         const int start = cubeEdgeStart(edge);
-        out[k] = std::uint32_t(edgeVertexIndex(f, vertexEnd, x + (start & 1),
-                                               y + ((start >> 1) & 1), z + ((start >> 2) & 1),
-                                               cubeEdgeAxis(edge)));
+        out[k] =
+            std::uint32_t(edgeVertexIndex(f, vertexEnd, x + (start & 1), y + ((start >> 1) & 1),
+                                          z + ((start >> 2) & 1), cubeEdgeAxis(edge)));
     }
 }
 

@@ -79,8 +79,8 @@ TEST(MarchingCubes, RandomFieldsGiveClosedConsistentlyWoundMeshes) {
         for (int z = 0; z < n; ++z) {
             for (int y = 0; y < n; ++y) {
                 for (int x = 0; x < n; ++x) {
-                    const bool border = x == 0 || y == 0 || z == 0 || x == n - 1 || y == n - 1 ||
-                                        z == n - 1;
+                    const bool border =
+                        x == 0 || y == 0 || z == 0 || x == n - 1 || y == n - 1 || z == n - 1;
                     values[(z * n + y) * n + x] = border ? 1.0f : unit(rng);
                 }
             }

@@ -48,8 +48,8 @@ MeshMeasures measureMesh(const TriangleMesh& mesh) {
         const Vec3d cross{ab.y * ac.z - ab.z * ac.y, ab.z * ac.x - ab.x * ac.z,
                           ab.x * ac.y - ab.y * ac.x};
         m.area += 0.5 * length(cross);
-        m.volume += dot(a, Vec3d{b.y * c.z - b.z * c.y, b.z * c.x - b.x * c.z,
-                                 b.x * c.y - b.y * c.x}) / 6;
+        m.volume +=
+            dot(a, Vec3d{b.y * c.z - b.z * c.y, b.z * c.x - b.x * c.z, b.x * c.y - b.y * c.x}) / 6;
         if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) {
             ++m.degenerateTriangles;
         }

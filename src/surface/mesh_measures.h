@@ -10,14 +10,14 @@
 namespace weir {
 
 struct MeshMeasures {
-    double area = 0;    // [m^2]
-    double volume = 0;  // enclosed [m^3] by the divergence theorem; > 0 when wound outwards
-    std::size_t edges = 0;               // undirected edges
-    std::size_t boundaryEdges = 0;       // used by one triangle only
-    std::size_t nonManifoldEdges = 0;    // used by more than two triangles
-    std::size_t misorientedEdges = 0;    // used twice in the same direction
-    std::size_t degenerateTriangles = 0;  // a vertex index repeated
-    std::size_t components = 0;          // connected pieces (through shared vertices)
+    double area = 0;        // [m^2]
+    double volume = 0;      // enclosed [m^3] by the divergence theorem; > 0 when wound outwards
+    std::size_t edges = 0;  // undirected edges
+    std::size_t boundaryEdges = 0;         // used by one triangle only
+    std::size_t nonManifoldEdges = 0;      // used by more than two triangles
+    std::size_t misorientedEdges = 0;      // used twice in the same direction
+    std::size_t degenerateTriangles = 0;   // a vertex index repeated
+    std::size_t components = 0;            // connected pieces (through shared vertices)
     std::int64_t eulerCharacteristic = 0;  // V - E + F over the vertices used: 2 per sphere
 
     bool closed() const {

@@ -39,9 +39,8 @@ double estimateParticleSpacing(const HostParticles& particles) {
     const std::size_t n = particles.size();
     std::vector<std::uint32_t> byX(n);
     std::iota(byX.begin(), byX.end(), 0u);
-    std::sort(byX.begin(), byX.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return particles.x[a] < particles.x[b];
-    });
+    std::sort(byX.begin(), byX.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return particles.x[a] < particles.x[b]; });
     const auto distance2 = [&](std::uint32_t a, std::uint32_t b) {
         const double dx = double(particles.x[a]) - particles.x[b];
         const double dy = double(particles.y[a]) - particles.y[b];
@@ -154,9 +153,9 @@ SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& op
         std::ostringstream message;
         message << "the surface lattice would need " << plan.dims[0] << " x " << plan.dims[1]
                 << " x " << plan.dims[2] << " = " << samples << " samples at cell size "
-                << plan.cellSize << " m (particles spanning " << text(plan.particleMax.x -
-                                                                        plan.particleMin.x)
-                << " x " << text(plan.particleMax.y - plan.particleMin.y) << " x "
+                << plan.cellSize << " m (particles spanning "
+                << text(plan.particleMax.x - plan.particleMin.x) << " x "
+                << text(plan.particleMax.y - plan.particleMin.y) << " x "
                 << text(plan.particleMax.z - plan.particleMin.z) << " m), more than the limit of "
                 << std::int64_t(limit) << "; use a cell size of at least "
                 << plan.cellSize * std::cbrt(samples / limit) * 1.05 << " m";

@@ -24,7 +24,7 @@ struct SurfaceOptions {
     double spacing = 0;   // particle spacing d [m]; 0: the median nearest-neighbour distance
     double cellSize = 0;  // marching-cubes cell edge [m]; 0: d / 2
     double iso = 0;       // iso-value in particle spacings: 0 is the fluid's surface, > 0 inflates
-    double kernelRadiusRatio = 2;                    // kernel radius R / d
+    double kernelRadiusRatio = 2;                     // kernel radius R / d
     std::int64_t maxSamples = std::int64_t(1) << 26;  // field samples allowed (12 bytes each)
 };
 

@@ -5,8 +5,7 @@
 
 namespace weir {
 
-template TriangleMesh extractSurface<CudaExec>(CudaExec&, const HostParticles&,
-                                               const SurfacePlan&);
+template TriangleMesh extractSurface<CudaExec>(CudaExec&, const HostParticles&, const SurfacePlan&);
 
 TriangleMesh reconstructSurfaceCuda(const HostParticles& particles, const SurfacePlan& plan) {
     if (!cudaDeviceAvailable()) {

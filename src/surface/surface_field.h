@@ -33,8 +33,10 @@ struct ParticleBinsView {
         const Vec3 local = (p - origin) * invBin;
         const int cy = floorToInt(local.y);
         const int cz = floorToInt(local.z);
-        const int yLo = cy - reach < 0 ? 0 : cy - reach, yHi = cy + reach < ny ? cy + reach : ny - 1;
-        const int zLo = cz - reach < 0 ? 0 : cz - reach, zHi = cz + reach < nz ? cz + reach : nz - 1;
+        const int yLo = cy - reach < 0 ? 0 : cy - reach,
+                  yHi = cy + reach < ny ? cy + reach : ny - 1;
+        const int zLo = cz - reach < 0 ? 0 : cz - reach,
+                  zHi = cz + reach < nz ? cz + reach : nz - 1;
         for (int y = yLo; y <= yHi; ++y) {
             const Real dy = slabDistance(p.y, origin.y + Real(y) * binSize);
             const Real remainderY = radius2 - dy * dy;

@@ -34,7 +34,8 @@ TriangleMesh marchingCubes(Exec& exec, const SampledFieldView& lattice) {
         exec.inclusiveScan(end, end, samples);
     }
     const Index vertexCount = exec.readOne(vertexEnd, std::size_t(samples - 1));
-    ExecBuffer<Exec, Vec3f> positions(static_cast<std::size_t>(vertexCount)), normals(static_cast<std::size_t>(vertexCount));
+    ExecBuffer<Exec, Vec3f> positions(static_cast<std::size_t>(vertexCount)),
+        normals(static_cast<std::size_t>(vertexCount));
     {
         const Index* end = vertexEnd.data();
         Vec3f* positionOut = positions.data();
@@ -120,14 +121,11 @@ TriangleMesh extractSurface(Exec& exec, const HostParticles& particles, const Su
         exec.forEach(n, [=] WEIR_HD(Index k) { sorted[k] = unsorted[permutation[k]]; });
     }
     ZhuBridsonField field;
-    field.particles = {bins.cellBound().data(),
-                       sortedPos.data(),
-                       binSpec.origin,
-                       binSpec.cellSize,
-                       binSpec.dims[0],
-                       binSpec.dims[1],
-                       binSpec.dims[2],
-                       int(std::ceil(plan.kernelRadius / plan.binSize - 1e-9))};
+    field.particles = {
+        bins.cellBound().data(), sortedPos.data(),
+        binSpec.origin,          binSpec.cellSize,
+        binSpec.dims[0],         binSpec.dims[1],
+        binSpec.dims[2],         int(std::ceil(plan.kernelRadius / plan.binSize - 1e-9))};
     field.kernelRadius2 = Real(plan.kernelRadius * plan.kernelRadius);
     field.inverseKernelRadius2 = Real(1 / (plan.kernelRadius * plan.kernelRadius));
     field.particleRadius = Real(plan.particleRadius);
@@ -137,7 +135,7 @@ TriangleMesh extractSurface(Exec& exec, const HostParticles& particles, const Su
     // The field at every lattice sample.
     const Index samples = Index(plan.sampleCount());
     ExecBuffer<Exec, float> values(static_cast<std::size_t>(samples));
-    SampledFieldView lattice{values.data(), float(plan.iso), plan.dims[0], plan.dims[1],
+    SampledFieldView lattice{values.data(), float(plan.iso),   plan.dims[0],       plan.dims[1],
                              plan.dims[2],  Vec3(plan.origin), Real(plan.cellSize)};
     {
         float* out = values.data();

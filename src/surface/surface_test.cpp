@@ -226,9 +226,9 @@ TEST(Surface, CudaWithoutCudaIsAClearError) {
         GTEST_SKIP() << "a CUDA device is visible";
     }
     const int counts[3] = {4, 4, 4};
-    EXPECT_THROW(reconstructSurface(Backend::Cuda, latticeBox(Vec3d(), counts, 0.01),
-                                    SurfaceOptions{}),
-                 SurfaceError);
+    EXPECT_THROW(
+        reconstructSurface(Backend::Cuda, latticeBox(Vec3d(), counts, 0.01), SurfaceOptions{}),
+        SurfaceError);
 }
 
 }  // namespace
