@@ -4,6 +4,7 @@
 
 #include <map>
 #include <memory>
+#include <tuple>
 
 #include "scene/scene.h"
 #include "scene/setup.h"
@@ -11,27 +12,28 @@
 namespace weir {
 namespace {
 
-// One settled dam break per (backend, size), kept across benchmarks.
-Simulation& simulationFor(Backend backend, std::int64_t size) {
-    static std::map<std::pair<int, std::int64_t>, std::unique_ptr<Simulation>> cache;
-    auto& slot = cache[{int(backend), size}];
+// One settled dam break per (backend, neighbour search, size), kept across benchmarks.
+Simulation& simulationFor(Backend backend, NeighbourMode mode, std::int64_t size) {
+    static std::map<std::tuple<int, int, std::int64_t>, std::unique_ptr<Simulation>> cache;
+    auto& slot = cache[{int(backend), int(mode), size}];
     if (!slot) {
         SetupOptions options;
         options.particleCount = size;
         SimulationSetup setup = buildSetup(builtinScene("dam_break"), options, nullptr);
-        slot = makeSimulation(backend, NeighbourMode::Grid, std::move(setup));
+        slot = makeSimulation(backend, mode, std::move(setup));
         slot->advance(int(0.05 / slot->params().timeStep));  // a fluid in motion
         slot->synchronize();
     }
     return *slot;
 }
 
-void stageBenchmark(benchmark::State& state, Backend backend, Simulation::Stage stage) {
+void stageBenchmark(benchmark::State& state, Backend backend, NeighbourMode mode,
+                    Simulation::Stage stage) {
     if (backend == Backend::Cuda && !cudaDeviceAvailable()) {
         state.SkipWithError("no CUDA device visible");
         return;
     }
-    Simulation& sim = simulationFor(backend, state.range(0));
+    Simulation& sim = simulationFor(backend, mode, state.range(0));
     sim.runStage(Simulation::Stage::Grid);
     sim.runStage(Simulation::Stage::Density);
     sim.synchronize();
@@ -50,20 +52,25 @@ void registerAll() {
         {"force", Simulation::Stage::Force},
         {"integrate", Simulation::Stage::Integrate},
     };
-    for (auto [name, stage] : stages) {
-        benchmark::RegisterBenchmark((std::string("cpu/") + name).c_str(), stageBenchmark,
-                                     Backend::Cpu, stage)
-            ->Arg(10000)
-            ->Arg(100000)
-            ->Unit(benchmark::kMillisecond)
-            ->UseRealTime();
-        benchmark::RegisterBenchmark((std::string("cuda/") + name).c_str(), stageBenchmark,
-                                     Backend::Cuda, stage)
-            ->Arg(100000)
-            ->Arg(1000000)
-            ->Arg(10000000)
-            ->Unit(benchmark::kMillisecond)
-            ->UseRealTime();
+    // dense: weir's default; grid: the paper's cell and neighbour tables (section 6.2).
+    const std::pair<const char*, NeighbourMode> modes[] = {{"dense", NeighbourMode::Dense},
+                                                           {"grid", NeighbourMode::Grid}};
+    for (auto [modeName, mode] : modes) {
+        for (auto [name, stage] : stages) {
+            benchmark::RegisterBenchmark((std::string("cpu/") + modeName + "/" + name).c_str(),
+                                         stageBenchmark, Backend::Cpu, mode, stage)
+                ->Arg(10000)
+                ->Arg(100000)
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime();
+            benchmark::RegisterBenchmark((std::string("cuda/") + modeName + "/" + name).c_str(),
+                                         stageBenchmark, Backend::Cuda, mode, stage)
+                ->Arg(100000)
+                ->Arg(1000000)
+                ->Arg(10000000)
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime();
+        }
     }
 }
 
