@@ -23,11 +23,27 @@ std::string formatDuration(double seconds) {
     return buf;
 }
 
+StatusLine::StatusLine() : live_(isatty(fileno(stderr)) != 0) {}
+
+void StatusLine::show(const char* text) {
+    if (live_) {
+        std::fprintf(stderr, "\r%s\033[K", text);
+        open_ = true;
+    } else {
+        std::fprintf(stderr, "%s\n", text);
+    }
+    std::fflush(stderr);
+}
+
+void StatusLine::finish() {
+    if (open_) {
+        std::fprintf(stderr, "\n");
+        open_ = false;
+    }
+}
+
 Progress::Progress(std::int64_t totalFrames, bool quiet)
-    : total_(totalFrames),
-      quiet_(quiet),
-      live_(isatty(fileno(stderr)) != 0),
-      start_(std::chrono::steady_clock::now()) {}
+    : total_(totalFrames), quiet_(quiet), start_(std::chrono::steady_clock::now()) {}
 
 double Progress::elapsedSeconds() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -46,27 +62,15 @@ void Progress::update(std::int64_t frame, double simTime, long long steps) {
                   (long long)frame, (long long)total_, simTime, stepsPerSecond,
                   formatDuration(elapsed).c_str(), formatDuration(eta).c_str(),
                   note_.empty() ? "" : "  ", note_.c_str());
-    if (live_) {
-        std::fprintf(stderr, "\r%s\033[K", line);
-        lineOpen_ = true;
-    } else {
-        std::fprintf(stderr, "%s\n", line);
-    }
-    std::fflush(stderr);
+    line_.show(line);
 }
 
-void Progress::finish() {
-    if (lineOpen_) {
-        std::fprintf(stderr, "\n");
-        lineOpen_ = false;
-    }
-}
+void Progress::finish() { line_.finish(); }
 
 ItemProgress::ItemProgress(std::string label, std::size_t total, bool quiet)
     : label_(std::move(label)),
       total_(total),
       quiet_(quiet),
-      live_(isatty(fileno(stderr)) != 0),
       start_(std::chrono::steady_clock::now()) {}
 
 double ItemProgress::elapsedSeconds() const {
@@ -75,7 +79,7 @@ double ItemProgress::elapsedSeconds() const {
 
 void ItemProgress::update(std::size_t done) {
     const std::size_t tenth = total_ / 10 > 0 ? total_ / 10 : 1;
-    if (quiet_ || done == 0 || (!live_ && done != total_ && done % tenth != 0)) {
+    if (quiet_ || done == 0 || (!line_.live() && done != total_ && done % tenth != 0)) {
         return;
     }
     const double elapsed = elapsedSeconds();
@@ -83,20 +87,9 @@ void ItemProgress::update(std::size_t done) {
     std::snprintf(line, sizeof line, "%s %zu/%zu  %.0f ms each  elapsed %s  ETA %s", label_.c_str(),
                   done, total_, 1000 * elapsed / double(done), formatDuration(elapsed).c_str(),
                   formatDuration(elapsed * double(total_ - done) / double(done)).c_str());
-    if (live_) {
-        std::fprintf(stderr, "\r%s\033[K", line);
-        lineOpen_ = true;
-    } else {
-        std::fprintf(stderr, "%s\n", line);
-    }
-    std::fflush(stderr);
+    line_.show(line);
 }
 
-void ItemProgress::finish() {
-    if (lineOpen_) {
-        std::fprintf(stderr, "\n");
-        lineOpen_ = false;
-    }
-}
+void ItemProgress::finish() { line_.finish(); }
 
 }  // namespace weir

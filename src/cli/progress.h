@@ -9,6 +9,20 @@
 
 namespace weir {
 
+// One status line on stderr: rewritten in place on a terminal, a plain log line otherwise.
+class StatusLine {
+   public:
+    StatusLine();
+    bool live() const { return live_; }
+    void show(const char* text);
+    // Ends a live line so that later output starts on a fresh line.
+    void finish();
+
+   private:
+    bool live_;
+    bool open_ = false;
+};
+
 class Progress {
    public:
     Progress(std::int64_t totalFrames, bool quiet);
@@ -23,8 +37,7 @@ class Progress {
    private:
     std::int64_t total_;
     bool quiet_;
-    bool live_;
-    bool lineOpen_ = false;
+    StatusLine line_;
     std::string note_;
     std::chrono::steady_clock::time_point start_;
 };
@@ -42,8 +55,7 @@ class ItemProgress {
     std::string label_;
     std::size_t total_;
     bool quiet_;
-    bool live_;
-    bool lineOpen_ = false;
+    StatusLine line_;
     std::chrono::steady_clock::time_point start_;
 };
 
