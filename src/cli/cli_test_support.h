@@ -18,6 +18,21 @@ namespace weir::cli_testing {
 
 namespace fs = std::filesystem;
 
+// A 6 x 6 x 4 block of particles at 2 cm in a 30 x 20 x 8 cm box (144 particles): small enough
+// to simulate, draw and mesh in a test.
+inline constexpr const char* kTinyDrawScene = R"({
+    "name": "tiny",
+    "container": {"min": [0, 0, 0], "max": [0.3, 0.2, 0.08]},
+    "blocks": [{"min": [0, 0, 0], "max": [0.12, 0.12, 0.08]}],
+    "particles": {"spacing": 0.02},
+    "time": {"duration": 1, "frameRate": 30}
+})";
+
+// Whether a program is on PATH (tests that need xvfb-run or ffmpeg skip without it).
+inline bool onPath(const std::string& program) {
+    return std::system(("command -v " + program + " > /dev/null 2>&1").c_str()) == 0;
+}
+
 // Like gmock's HasSubstr, which would need libgmock (the test binary links only gtest).
 inline ::testing::AssertionResult contains(const std::string& text, const std::string& part) {
     if (text.find(part) != std::string::npos) {

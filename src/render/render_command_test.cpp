@@ -23,14 +23,6 @@ namespace {
 using namespace cli_testing;
 using Json = nlohmann::json;
 
-// A 6 x 6 x 4 block of particles at 2 cm in a 30 x 20 x 8 cm box: 144 particles.
-constexpr const char* kTinyScene = R"({
-    "name": "tiny",
-    "container": {"min": [0, 0, 0], "max": [0.3, 0.2, 0.08]},
-    "blocks": [{"min": [0, 0, 0], "max": [0.12, 0.12, 0.08]}],
-    "particles": {"spacing": 0.02},
-    "time": {"duration": 1, "frameRate": 30}
-})";
 constexpr int kWidth = 320;
 constexpr int kHeight = 200;
 
@@ -140,7 +132,7 @@ void expectParticlesWhereTheyProject(const Image& image, const HostParticles& p,
 }
 
 TEST_F(RenderCli, RunRenderWritesOneImagePerFrameShowingTheParticles) {
-    writeFile("tiny.json", kTinyScene);
+    writeFile("tiny.json", kTinyDrawScene);
     const RunResult run = weir(
         "run tiny.json --backend cpu --quiet --frames 2 --out frames "
         "--render --width 320 --height 200 --samples 1");
@@ -178,7 +170,7 @@ TEST_F(RenderCli, RunRenderWritesOneImagePerFrameShowingTheParticles) {
 }
 
 TEST_F(RenderCli, RenderCommandUsesTheCameraAndColouringOfItsFlags) {
-    writeFile("tiny.json", kTinyScene);
+    writeFile("tiny.json", kTinyDrawScene);
     ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 3 --out frames").exitCode, 0);
     const RunResult render = weir(
         "render frames --width 320 --height 200 --samples 1 --scene tiny.json "
@@ -208,7 +200,7 @@ TEST_F(RenderCli, RenderCommandUsesTheCameraAndColouringOfItsFlags) {
 }
 
 TEST_F(RenderCli, RenderSurfaceDrawsWaterOverTheFluid) {
-    writeFile("tiny.json", kTinyScene);
+    writeFile("tiny.json", kTinyDrawScene);
     ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 0 --out frames").exitCode, 0);
     const RunResult render = weir(
         "render frames --surface --width 320 --height 200 --samples 1 --scene tiny.json "
@@ -228,7 +220,7 @@ TEST_F(RenderCli, RenderSurfaceDrawsWaterOverTheFluid) {
 }
 
 TEST_F(RenderCli, ParticleSpacingComesFromTheSceneForAnyFirstFrame) {
-    writeFile("tiny.json", kTinyScene);
+    writeFile("tiny.json", kTinyDrawScene);
     ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 8 --out frames").exitCode, 0);
     // Keep only the last frame in the index: the fluid has moved, its particles no longer sit on
     // the 2 cm lattice.
@@ -246,10 +238,10 @@ TEST_F(RenderCli, ParticleSpacingComesFromTheSceneForAnyFirstFrame) {
 }
 
 TEST_F(RenderCli, VideoIsEncodedWithFfmpeg) {
-    if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
+    if (!onPath("ffmpeg")) {
         GTEST_SKIP() << "ffmpeg is not installed (Debian: apt-get install ffmpeg)";
     }
-    writeFile("tiny.json", kTinyScene);
+    writeFile("tiny.json", kTinyDrawScene);
     ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 4 --out frames").exitCode, 0);
     const RunResult render =
         weir("render frames --width 160 --height 100 --samples 1 --quiet --video films/tiny.mp4");
@@ -274,7 +266,7 @@ TEST_F(RenderCli, BadInputIsRefusedWithTheValue) {
     EXPECT_EQ(missing.exitCode, 1) << missing.output;
     EXPECT_TRUE(contains(missing.output, "'nowhere'"));
 
-    writeFile("tiny.json", kTinyScene);
+    writeFile("tiny.json", kTinyDrawScene);
     ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 0 --out frames").exitCode, 0);
     const RunResult colour = weir("render frames --color temperature");
     EXPECT_EQ(colour.exitCode, 2) << colour.output;

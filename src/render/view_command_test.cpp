@@ -17,18 +17,6 @@ namespace {
 
 using namespace cli_testing;
 
-constexpr const char* kTinyScene = R"({
-    "name": "tiny",
-    "container": {"min": [0, 0, 0], "max": [0.3, 0.2, 0.08]},
-    "blocks": [{"min": [0, 0, 0], "max": [0.12, 0.12, 0.08]}],
-    "particles": {"spacing": 0.02},
-    "time": {"duration": 1, "frameRate": 30}
-})";
-
-bool onPath(const std::string& program) {
-    return std::system(("command -v " + program + " > /dev/null 2>&1").c_str()) == 0;
-}
-
 class ViewCli : public Cli {
    protected:
     // `weir view ARGS` in a virtual X server of its own.
@@ -42,7 +30,7 @@ TEST_F(ViewCli, DrawsFramesTakesKeysAndQuitsUnderXvfb) {
     if (!onPath("xvfb-run")) {
         GTEST_SKIP() << "xvfb-run is not installed (Debian: apt-get install xvfb xauth)";
     }
-    writeFile("tiny.json", kTinyScene);
+    writeFile("tiny.json", kTinyDrawScene);
     // Colour, surface and back, a pause, a single step, a reset, then run on: every key's path.
     const RunResult view = viewUnderXvfb(
         "tiny.json --backend cpu --width 320 --height 200 --max-frames 14 "
@@ -85,7 +73,7 @@ TEST_F(ViewCli, DrawsFramesTakesKeysAndQuitsUnderXvfb) {
 }
 
 TEST_F(ViewCli, WithoutADisplayItSaysSo) {
-    writeFile("tiny.json", kTinyScene);
+    writeFile("tiny.json", kTinyDrawScene);
     const RunResult view = shell("env -u DISPLAY -u WAYLAND_DISPLAY " + quoted(WEIR_BINARY) +
                                  " view tiny.json --backend cpu --max-frames 1");
     EXPECT_EQ(view.exitCode, 1) << view.output;
