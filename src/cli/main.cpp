@@ -4,6 +4,8 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "cluster/communicator.h"
+#include "core/backend.h"
 #include "scene/scene.h"
 #if defined(WEIR_HAS_RENDER)
 #include "render/render_commands.h"
@@ -41,7 +43,20 @@ void addImageOptions(CLI::App* cmd, weir::RenderOptions& o) {
 
 }  // namespace
 
+int weirMain(int argc, char** argv);
+
 int main(int argc, char** argv) {
+    // Under mpirun: MPI first, and one GPU per rank of each host (cluster/).
+    weir::startCommunication(&argc, &argv);
+    if (weir::launchedByMpi()) {
+        weir::selectCudaDevice(weir::localRank());
+    }
+    const int code = weirMain(argc, argv);
+    weir::endCommunication();
+    return code;
+}
+
+int weirMain(int argc, char** argv) {
     using namespace weir;
     CLI::App app{"weir: SPH fluid animation on CPU and NVIDIA GPUs", "weir"};
     app.set_version_flag("--version", std::string(WEIR_VERSION));

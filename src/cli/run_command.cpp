@@ -4,6 +4,7 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "cluster/distributed_simulation.h"
 #include "core/check.h"
 #include "io/frame_writer.h"
 #include "scene/scene.h"
@@ -27,7 +28,32 @@ Scene resolveScene(const std::string& spec) {
     return loadScene(spec);  // reports the missing file
 }
 
+namespace {
+
+std::ostream& nullStream() {
+    static std::ostream sink(nullptr);  // no buffer: writes are dropped
+    return sink;
+}
+
+// Prints the error; in a distributed run, names the rank and ends every rank with `code` (the
+// others may be waiting for this one in a collective).
+int fail(Communicator& comm, int code, const std::string& what) {
+    if (comm.size() > 1) {
+        std::cerr << "weir: " << comm.where() << ": error: " << what
+                  << "\nweir: ending all ranks; frames already written are complete.\n";
+        comm.abort(code);
+    }
+    std::cerr << "weir: error: " << what << "\n";
+    return code;
+}
+
+}  // namespace
+
 int runCommand(const RunOptions& options, RunObserver* observer) {
+    std::unique_ptr<Communicator> comm = worldCommunicator();
+    const bool root = comm->rank() == 0;
+    // Only rank 0 talks (and writes); the others' errors still name them.
+    std::ostream& log = root ? std::cerr : nullStream();
     try {
         Scene scene = resolveScene(options.scene);
         SetupOptions setupOptions;
@@ -42,52 +68,76 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         const std::int64_t frames =
             options.frames ? std::min(*options.frames, report.frames) : report.frames;
 
-        std::cerr << "weir: scene " << scene.name << " (" << scene.sourcePath << ")\n";
+        log << "weir: scene " << scene.name << " (" << scene.sourcePath << ")\n";
         if (options.explain) {
             for (const std::string& line : report.lines) {
-                std::cerr << "  " << line << "\n";
+                log << "  " << line << "\n";
             }
         }
         for (const std::string& warning : report.warnings) {
-            std::cerr << "weir: warning: " << warning << "\n";
+            log << "weir: warning: " << warning << "\n";
+        }
+        if (!root) {
+            observer = nullptr;
         }
         if (observer != nullptr) {
             observer->start(scene, report, outDir);
         }
-        auto sim = makeSimulation(backend, mode, std::move(setup));
-        std::cerr << "weir: " << sim->particleCount() << " particles on " << backendName(backend)
-                  << " (" << sim->deviceName() << "), " << neighbourModeName(mode)
-                  << " neighbours, dt " << sim->params().timeStep << " s"
-                  << (sim->params().adaptiveTimeStep ? " (adaptive)" : "") << ", about "
-                  << report.stepsPerFrame << " steps per frame, " << frames << " frames to "
-                  << outDir << "/\n";
+        std::unique_ptr<Simulation> sim;
+        DistributedSimulation* cluster = nullptr;
+        if (launchedByMpi()) {
+            auto distributed = std::make_unique<DistributedSimulation>(*comm, backend, mode,
+                                                                       std::move(setup));
+            cluster = distributed.get();
+            sim = std::move(distributed);
+        } else {
+            sim = makeSimulation(backend, mode, std::move(setup));
+        }
+        log << "weir: " << sim->particleCount() << " particles on " << backendName(backend)
+            << " (" << sim->deviceName() << "), " << neighbourModeName(mode)
+            << " neighbours, dt " << sim->params().timeStep << " s"
+            << (sim->params().adaptiveTimeStep ? " (adaptive)" : "") << ", about "
+            << report.stepsPerFrame << " steps per frame, " << frames << " frames to " << outDir
+            << "/\n";
+        if (cluster != nullptr) {
+            const Decomposition& d = cluster->decomposition();
+            log << "weir: " << d.ranks() << " ranks, slabs along " << "xyz"[d.axis()]
+                << ", one per rank, balanced by particle count\n";
+        }
 
-        FrameWriter writer(outDir, format);
+        std::unique_ptr<FrameWriter> writer;
+        if (root) {
+            writer = std::make_unique<FrameWriter>(outDir, format);
+        }
         HostParticles host;
         sim->computeDensity();
         sim->download(host);
-        writer.write(0, 0.0, host);
+        if (root) {
+            writer->write(0, 0.0, host);
+        }
         if (observer != nullptr) {
             observer->frame(0, 0.0, host);
         }
-        Progress progress(frames, options.quiet);
+        Progress progress(frames, options.quiet || !root);
         DensityDeviation worst;
         for (std::int64_t frame = 1; frame <= frames; ++frame) {
             sim->advanceTo(double(frame) * report.frameInterval);
             FaultRecord fault = sim->fault();
             if (fault.code != 0) {
                 progress.finish();
-                std::cerr << "weir: error: " << describeFault(fault, sim->params())
-                          << "\nweir: frames 0.." << frame - 1 << " in " << outDir
-                          << "/ are complete and kept.\n";
+                log << "weir: error: " << describeFault(fault, sim->params()) << "\nweir: frames 0.."
+                    << frame - 1 << " in " << outDir << "/ are complete and kept.\n";
                 return kExitBlowUp;
             }
             sim->download(host);
+            if (!root) {
+                continue;
+            }
             const DensityDeviation deviation = densityDeviation(host, sim->params().restDensity);
             worst.max = std::max(worst.max, deviation.max);
             worst.mean = std::max(worst.mean, deviation.mean);
             progress.setNote(deviation.text());
-            writer.write(int(frame), double(frame) * report.frameInterval, host);
+            writer->write(int(frame), double(frame) * report.frameInterval, host);
             if (observer != nullptr) {
                 observer->frame(frame, double(frame) * report.frameInterval, host);
             }
@@ -98,17 +148,19 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             observer->finish();
         }
         double seconds = progress.elapsedSeconds();
-        std::cerr << "weir: done, " << frames + 1 << " frames, " << sim->stepCount() << " steps in "
-                  << formatDuration(seconds) << " ("
-                  << (seconds > 0 ? double(sim->stepCount()) / seconds : 0.0)
-                  << " steps/s); worst frame: " << worst.text() << "\n";
+        log << "weir: done, " << frames + 1 << " frames, " << sim->stepCount() << " steps in "
+            << formatDuration(seconds) << " ("
+            << (seconds > 0 ? double(sim->stepCount()) / seconds : 0.0)
+            << " steps/s); worst frame: " << worst.text() << "\n";
+        if (cluster != nullptr) {
+            log << "weir: borders moved " << cluster->exchangeStats().rebalances
+                << " times to keep the ranks balanced\n";
+        }
         return kExitOk;
     } catch (const std::invalid_argument& e) {
-        std::cerr << "weir: error: " << e.what() << "\n";
-        return kExitUsage;
+        return fail(*comm, kExitUsage, e.what());
     } catch (const std::exception& e) {
-        std::cerr << "weir: error: " << e.what() << "\n";
-        return kExitError;
+        return fail(*comm, kExitError, e.what());
     }
 }
 

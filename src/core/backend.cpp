@@ -9,7 +9,17 @@ namespace weir {
 
 #if defined(WEIR_HAS_CUDA)
 bool probeCudaDevice(std::string* description);  // core/exec_cuda.cu
+int useCudaDeviceOf(int rankOnHost);             // core/exec_cuda.cu
 #endif
+
+int selectCudaDevice(int rankOnHost) {
+#if defined(WEIR_HAS_CUDA)
+    return useCudaDeviceOf(rankOnHost);
+#else
+    (void)rankOnHost;
+    return -1;
+#endif
+}
 
 Backend parseBackend(const std::string& name) {
     if (name == "cpu") {

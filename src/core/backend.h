@@ -13,6 +13,9 @@ const char* backendName(Backend backend);
 
 // True when this binary has the CUDA backend and a CUDA device is visible.
 bool cudaDeviceAvailable();
+// Makes GPU (rankOnHost mod GPUs) this process's CUDA device, one GPU per rank of a distributed
+// run; returns its ordinal, or -1 without CUDA or GPUs. Call before any CUDA work.
+int selectCudaDevice(int rankOnHost);
 // Human-readable description of the device of a backend ("NVIDIA H100 80GB HBM3, 132 SMs, ...").
 std::string describeBackend(Backend backend);
 

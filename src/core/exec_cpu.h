@@ -20,8 +20,9 @@ class HostBuffer {
    public:
     HostBuffer() = default;
     explicit HostBuffer(std::size_t n) : data_(n) {}
-    void resize(std::size_t n) { data_.resize(n); }
+    void resize(std::size_t n) { data_.resize(n); }  // keeps the contents, as DeviceBuffer's
     std::size_t size() const { return data_.size(); }
+    std::size_t capacity() const { return data_.capacity(); }
     T* data() { return data_.data(); }
     const T* data() const { return data_.data(); }
     void swap(HostBuffer& other) noexcept { data_.swap(other.data_); }
@@ -62,6 +63,14 @@ class CpuExec {
     template <class T>
     void download(const Buffer<T>& src, T* dst, std::size_t n) const {
         std::copy(src.data(), src.data() + n, dst);
+    }
+    template <class T>
+    void uploadAt(Buffer<T>& dst, std::size_t offset, const T* src, std::size_t n) const {
+        std::copy(src, src + n, dst.data() + offset);
+    }
+    template <class T>
+    void downloadFrom(const Buffer<T>& src, std::size_t offset, T* dst, std::size_t n) const {
+        std::copy(src.data() + offset, src.data() + offset + n, dst);
     }
     template <class T>
     T readOne(const Buffer<T>& src, std::size_t index) const {

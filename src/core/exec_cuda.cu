@@ -131,4 +131,15 @@ bool probeCudaDevice(std::string* description) {
     return true;
 }
 
+int useCudaDeviceOf(int rankOnHost) {
+    int count = 0;
+    if (cudaGetDeviceCount(&count) != cudaSuccess || count == 0) {
+        cudaGetLastError();
+        return -1;
+    }
+    const int ordinal = rankOnHost % count;
+    WEIR_CUDA_CHECK(cudaSetDevice(ordinal));
+    return ordinal;
+}
+
 }  // namespace weir

@@ -15,7 +15,9 @@
 
 namespace weir {
 
-// Owning device memory, move-only. resize() does not keep the contents.
+// Owning device memory, move-only. resize() reallocates only to grow past the capacity, and then
+// does not keep the contents; within the capacity it keeps them (a distributed run's particle
+// count changes every step: no allocation per step).
 template <class T>
 class DeviceBuffer {
    public:
@@ -31,21 +33,21 @@ class DeviceBuffer {
     ~DeviceBuffer() { release(); }
 
     void resize(std::size_t n) {
-        if (n == size_) {
-            return;
-        }
-        release();
-        if (n > 0) {
+        if (n > capacity_) {
+            release();
             WEIR_CUDA_CHECK(cudaMalloc(&data_, n * sizeof(T)));
+            capacity_ = n;
         }
         size_ = n;
     }
     std::size_t size() const { return size_; }
+    std::size_t capacity() const { return capacity_; }
     T* data() { return data_; }
     const T* data() const { return data_; }
     void swap(DeviceBuffer& o) noexcept {
         std::swap(data_, o.data_);
         std::swap(size_, o.size_);
+        std::swap(capacity_, o.capacity_);
     }
 
    private:
@@ -55,9 +57,11 @@ class DeviceBuffer {
         }
         data_ = nullptr;
         size_ = 0;
+        capacity_ = 0;
     }
     T* data_ = nullptr;
     std::size_t size_ = 0;
+    std::size_t capacity_ = 0;
 };
 
 // At least 6 blocks of 256 threads per SM, so registers are capped at 40: the density and force
@@ -144,6 +148,25 @@ class CudaExec {
     void download(const Buffer<T>& src, T* dst, std::size_t n) {
         WEIR_CUDA_CHECK(
             cudaMemcpyAsync(dst, src.data(), n * sizeof(T), cudaMemcpyDeviceToHost, stream_));
+        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+    }
+    // n elements between the host and a buffer from element `offset` on (the buffer keeps its size).
+    template <class T>
+    void uploadAt(Buffer<T>& dst, std::size_t offset, const T* src, std::size_t n) {
+        if (n == 0) {
+            return;
+        }
+        WEIR_CUDA_CHECK(cudaMemcpyAsync(dst.data() + offset, src, n * sizeof(T),
+                                        cudaMemcpyHostToDevice, stream_));
+        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+    }
+    template <class T>
+    void downloadFrom(const Buffer<T>& src, std::size_t offset, T* dst, std::size_t n) {
+        if (n == 0) {
+            return;
+        }
+        WEIR_CUDA_CHECK(cudaMemcpyAsync(dst, src.data() + offset, n * sizeof(T),
+                                        cudaMemcpyDeviceToHost, stream_));
         WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
     }
     template <class T>

@@ -20,7 +20,7 @@ namespace weir {
 // (pressure follows from density by eq. 3); the density stage reads only positions, so writing
 // it there races with nothing.
 struct ParticleView {
-    Real4* pos;  // x, y, z, unused
+    Real4* pos;  // x, y, z, ghost flag (isGhost)
     Real4* vel;  // vx, vy, vz, density
     Real4* acc;  // ax, ay, az, unused
     Index count;
@@ -44,6 +44,11 @@ struct ObstacleView {
     const ObstacleSphere* spheres;
     int sphereCount;
 };
+
+// A ghost is a copy of another rank's particle near this rank's border (distributed runs,
+// cluster/): it lends its density and velocity to the owned particles' sums but is neither
+// moved, nor checked, nor counted in the time step here; its owner does that.
+WEIR_HD inline bool isGhost(const Real4& pos) { return pos.w != Real(0); }
 
 // Why a run had to stop. The first particle to fail records itself; the host reads it back.
 enum class FaultCode : int { None = 0, NotFinite = 1, TooFast = 2, Escaped = 3 };
@@ -233,6 +238,9 @@ WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
 WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams& params,
                                 const ObstacleView& obstacles, FaultRecord* fault,
                                 StepClock* clock) {
+    if (isGhost(pv.pos[i])) {
+        return;
+    }
     Vec3 x = pv.position(i), v = pv.velocity(i);
     advanceParticle(x, v, pv.acc[i].xyz(), i, params, obstacles, fault, clock);
     pv.pos[i] = Real4::from(x);
@@ -248,7 +256,7 @@ WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, co
                                              FaultRecord* fault, StepClock* clock, Real4* newPos,
                                              Real4* newVel) {
     const Real4 v4 = pv.vel[i];
-    if (clock->dt == Real(0)) {  // a no-op step past the output time: state carried over
+    if (clock->dt == Real(0) || isGhost(pv.pos[i])) {  // a no-op step, or a ghost: carried over
         newPos[i] = pv.pos[i];
         newVel[i] = v4;
         return;

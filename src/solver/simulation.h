@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cluster/slab.h"
 #include "core/backend.h"
 #include "core/stage_timer.h"
 #include "grid/cell_id.h"
@@ -36,9 +37,18 @@ struct SimulationSetup {
     BoundaryParticles boundary;  // walls.model "particles": static wall particles and their grid
     HostParticles particles;
     SceneSeeds seeds;  // instead of particles: seeded by the simulation itself (scene/seeding.h)
+    // Distributed runs: `particles` are this rank's share with these global ids; `seeds` are
+    // seeded only inside `share` (ids: the seed order). Single runs: empty ids, every slab.
+    std::vector<Index> particleIds;
+    Slab share;
+    std::int64_t shareEstimate = 0;  // particles expected in `share` (for the memory check)
 
     std::int64_t particleCount() const {
         return particles.size() > 0 ? std::int64_t(particles.size()) : seeds.count;
+    }
+    // Particles this process will hold: all of them, or its share's.
+    std::int64_t countHere() const {
+        return share.everything() || particles.size() > 0 ? particleCount() : shareEstimate;
     }
 };
 
@@ -84,6 +94,22 @@ class Simulation {
     virtual long long stepCount() const = 0;
     // Simulated time, s (read back from the device clock).
     virtual double time() const = 0;
+
+    // ---- One rank's part of a distributed run (cluster/distributed_simulation.h) ----
+    // Drops ghost copies and moves the owned particles outside `share` into `leaving`.
+    virtual void takeLeavers(const Slab& share, ParticleBatch& leaving) = 0;
+    // Appends copies of the owned particles within `width` of the borders of `share` to `out`.
+    virtual void copyBorderParticles(const Slab& share, double width, ParticleBatch& out) = 0;
+    // Adds particles: arrivals, or ghost copies (position w = 1).
+    virtual void append(const ParticleBatch& batch) = 0;
+    // Appends the owned particles (no ghosts) to `out`, in the current order.
+    virtual void downloadOwned(ParticleBatch& out) = 0;
+    // counts[b] += owned particles in bin b of width binWidth from lo along `axis` (clamped).
+    virtual void histogram(int axis, double lo, double binWidth, std::vector<Index>& counts) = 0;
+    virtual StepClock clock() = 0;
+    virtual void setClock(const StepClock& clock) = 0;
+    // One step with the clock as it is (the caller set the shared dt inputs and target).
+    virtual void stepOnce() = 0;
 };
 
 // Creates a simulation on a backend; throws SimulationError if the particles do not fit in memory.

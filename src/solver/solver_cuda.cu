@@ -8,7 +8,7 @@ template class SphSolver<CudaExec>;
 
 std::unique_ptr<Simulation> makeCudaSimulation(NeighbourMode mode, SimulationSetup setup) {
     CudaExec probe;
-    checkMemoryFits(Index(setup.particleCount()), mode, probe.freeMemoryBytes(), "the GPU");
+    checkMemoryFits(Index(setup.countHere()), mode, probe.freeMemoryBytes(), "the GPU");
     return std::make_unique<SphSolver<CudaExec>>(mode, std::move(setup));
 }
 

@@ -8,6 +8,8 @@
 #include <string>
 #include <utility>
 
+#include "cluster/slab.h"
+#include "core/atomics.h"
 #include "core/check.h"
 #include "grid/dense_grid.h"
 #include "grid/neighbour_grid.h"
@@ -28,7 +30,7 @@ class SphSolver final : public Simulation {
           sparse_(mode == NeighbourMode::Grid ? setup.grid : GridSpec{}),
           dense_(denseGridSpec(setup.grid, denseReach(setup)), denseReach(setup)) {
         if (setup.particles.size() == 0 && !setup.seeds.empty()) {
-            seed(setup.seeds);
+            seed(setup.seeds, setup.share);
         } else {
             const HostParticles& host = setup.particles;
             n_ = Index(host.size());
@@ -37,20 +39,13 @@ class SphSolver final : public Simulation {
             for (Index i = 0; i < n_; ++i) {
                 pos[i] = {host.x[i], host.y[i], host.z[i], 0};
                 vel[i] = {host.vx[i], host.vy[i], host.vz[i], 0};
-                ids[i] = i;
+                ids[i] = setup.particleIds.empty() ? i : setup.particleIds[std::size_t(i)];
             }
             exec_.upload(pos_, pos.data(), n_);
             exec_.upload(vel_, vel.data(), n_);
             exec_.upload(id_, ids.data(), n_);
         }
-        if (mode_ != NeighbourMode::Dense) {
-            acc_.resize(n_);  // the dense path fuses force and displacement
-        }
-        if (mode_ != NeighbourMode::Brute) {
-            sortedPos_.resize(n_);
-            sortedVel_.resize(n_);
-            sortedId_.resize(n_);
-        }
+        fitScratch();
         const BoundaryParticles& walls = setup.boundary;
         if (walls.size() > 0) {
             exec_.upload(boundaryPos_, walls.pos.data(), walls.pos.size());
@@ -309,7 +304,7 @@ class SphSolver final : public Simulation {
         const SphParams params = params_;
         const StepClock* clock = clock_.data();
         exec_.forEach(n_, [=] WEIR_HD(Index i) {
-            if (clock->dt != Real(0)) {
+            if (clock->dt != Real(0) && !isGhost(pv.pos[i])) {
                 accelerationAt(i, pv, nb, params);
             }
         });
@@ -407,14 +402,12 @@ class SphSolver final : public Simulation {
     long long stepCount() const override { return exec_.readOne(clock_, 0).step; }
     double time() const override { return exec_.readOne(clock_, 0).time; }
 
-    // Creates the particles of `seeds` on this backend, in the order of the host's seeding: per
-    // lattice, in chunks, a keep flag per point, a prefix sum of the flags, and each kept point
-    // written at its place. (Public only because CUDA lambdas need a public enclosing function.)
-    void seed(const SceneSeeds& seeds) {
-        n_ = Index(seeds.count);
-        pos_.resize(std::size_t(n_));
-        vel_.resize(std::size_t(n_));
-        id_.resize(std::size_t(n_));
+    // Creates the particles of `seeds` inside `share` on this backend, in the order of the host's
+    // seeding, with their index in that order as id: per lattice, in chunks, a keep flag per
+    // point and a prefix sum of the flags (the global order), a second flag and sum for the
+    // points in the share (their place here), and each kept point written at its place. A first
+    // pass counts the share. (Public only because CUDA lambdas need a public enclosing function.)
+    void seed(const SceneSeeds& seeds, const Slab& share) {
         Buffer<Box> fluidBoxes, obstacleBoxes;
         Buffer<SphereShape> fluidSpheres, obstacleSpheres;
         exec_.upload(fluidBoxes, seeds.fluidBoxes.data(), seeds.fluidBoxes.size());
@@ -425,40 +418,231 @@ class SphSolver final : public Simulation {
                                 fluidSpheres.data(),    int(fluidSpheres.size()),
                                 obstacleBoxes.data(),   int(obstacleBoxes.size()),
                                 obstacleSpheres.data(), int(obstacleSpheres.size())};
+        const bool whole = share.everything();
         constexpr std::int64_t kChunk = std::int64_t(1) << 26;
-        Buffer<Index> kept;
-        Index placed = 0;
-        Real4 *pos = pos_.data(), *vel = vel_.data();
-        Index* id = id_.data();
-        for (const SeedLattice& lattice : seeds.lattices) {
-            for (std::int64_t start = 0; start < lattice.points(); start += kChunk) {
-                const Index count = Index(std::min(kChunk, lattice.points() - start));
-                kept.resize(std::size_t(std::min(kChunk, lattice.points())));
-                Index* flag = kept.data();
-                exec_.forEach(count, [=] WEIR_HD(Index k) {
-                    flag[k] = keepSeed(shapes, lattice, lattice.point(start + k)) ? 1 : 0;
-                });
-                exec_.inclusiveScan(flag, flag, count);
-                const Index base = placed;
-                const Index limit = n_;
-                exec_.forEach(count, [=] WEIR_HD(Index k) {
-                    const Index before = k > 0 ? flag[k - 1] : 0;
-                    const Index at = base + before;
-                    if (flag[k] > before && at < limit) {
+        Buffer<Index> kept, mine;
+        Index placed = 0, counted = 0;
+        for (int pass = whole ? 1 : 0; pass < 2; ++pass) {
+            if (pass == 1) {
+                n_ = whole ? Index(seeds.count) : counted;
+                pos_.resize(std::size_t(n_));
+                vel_.resize(std::size_t(n_));
+                id_.resize(std::size_t(n_));
+            }
+            Real4 *pos = pos_.data(), *vel = vel_.data();
+            Index* id = id_.data();
+            Index global = 0;
+            placed = 0;
+            for (const SeedLattice& lattice : seeds.lattices) {
+                for (std::int64_t start = 0; start < lattice.points(); start += kChunk) {
+                    const Index count = Index(std::min(kChunk, lattice.points() - start));
+                    kept.resize(std::size_t(std::min(kChunk, lattice.points())));
+                    mine.resize(whole ? 0 : kept.size());
+                    Index* flag = kept.data();
+                    Index* local = whole ? flag : mine.data();
+                    exec_.forEach(count, [=] WEIR_HD(Index k) {
                         const Vec3d p = lattice.point(start + k);
-                        pos[at] = {Real(p.x), Real(p.y), Real(p.z), 0};
-                        vel[at] = {Real(lattice.velocity.x), Real(lattice.velocity.y),
-                                   Real(lattice.velocity.z), 0};
-                        id[at] = at;
+                        const bool keep = keepSeed(shapes, lattice, p);
+                        flag[k] = keep ? 1 : 0;
+                        if (!whole) {
+                            local[k] = keep && share.contains(share.coordinate(p)) ? 1 : 0;
+                        }
+                    });
+                    if (pass == 0) {
+                        exec_.inclusiveScan(local, local, count);
+                        counted += exec_.readOne(mine, std::size_t(count - 1));
+                        continue;
                     }
-                });
-                placed += exec_.readOne(kept, std::size_t(count - 1));
+                    exec_.inclusiveScan(flag, flag, count);
+                    if (!whole) {
+                        exec_.inclusiveScan(local, local, count);
+                    }
+                    const Index globalBase = global, localBase = placed, limit = n_;
+                    exec_.forEach(count, [=] WEIR_HD(Index k) {
+                        const Index before = k > 0 ? local[k - 1] : 0;
+                        const Index at = localBase + before;
+                        if (local[k] > before && at < limit) {
+                            const Vec3d p = lattice.point(start + k);
+                            pos[at] = {Real(p.x), Real(p.y), Real(p.z), 0};
+                            vel[at] = {Real(lattice.velocity.x), Real(lattice.velocity.y),
+                                       Real(lattice.velocity.z), 0};
+                            id[at] = globalBase + (k > 0 ? flag[k - 1] : 0);
+                        }
+                    });
+                    global += exec_.readOne(kept, std::size_t(count - 1));
+                    placed += whole ? exec_.readOne(kept, std::size_t(count - 1))
+                                    : exec_.readOne(mine, std::size_t(count - 1));
+                }
+            }
+            if (pass == 1 && global != Index(seeds.count)) {
+                throw SimulationError("seeding placed " + std::to_string(global) +
+                                      " particles where the host counted " +
+                                      std::to_string(seeds.count));
             }
         }
         if (placed != n_) {
             throw SimulationError("seeding placed " + std::to_string(placed) +
-                                  " particles where the host counted " + std::to_string(n_));
+                                  " particles where the count pass found " + std::to_string(n_));
         }
+    }
+
+    // ---- Distributed runs (cluster/): one rank's share, exchanged between steps ----
+
+    // Drops the ghost copies and takes out the owned particles outside `share` (into `leaving`).
+    void takeLeavers(const Slab& share, ParticleBatch& leaving) override {
+        const Index n = n_;
+        flags_.resize(std::size_t(n) * 2);
+        Index *stay = flags_.data(), *leave = flags_.data() + n;
+        const Real4* pos = pos_.data();
+        exec_.forEach(n, [=] WEIR_HD(Index i) {
+            const bool owned = !isGhost(pos[i]);
+            const bool inside = share.contains(share.coordinate(pos[i]));
+            stay[i] = owned && inside ? 1 : 0;
+            leave[i] = owned && !inside ? 1 : 0;
+        });
+        const Index stays = compactInto(stay, sortedPos_, sortedVel_, sortedId_, 0);
+        gather(leave, leaving);
+        pos_.swap(sortedPos_);
+        vel_.swap(sortedVel_);
+        id_.swap(sortedId_);
+        n_ = stays;
+        fitScratch();
+    }
+
+    // Copies of the owned particles within `width` of the borders of `share`, onto the host.
+    void copyBorderParticles(const Slab& share, double width, ParticleBatch& out) override {
+        const Index n = n_;
+        flags_.resize(std::size_t(n));
+        Index* near = flags_.data();
+        const Real4* pos = pos_.data();
+        exec_.forEach(n, [=] WEIR_HD(Index i) {
+            near[i] = !isGhost(pos[i]) && share.nearBorder(share.coordinate(pos[i]), width) ? 1 : 0;
+        });
+        gather(near, out);
+    }
+
+    // Appends particles: arrivals (owned) or ghost copies (pos.w = 1).
+    void append(const ParticleBatch& batch) override {
+        const Index m = Index(batch.size());
+        if (m == 0) {
+            return;
+        }
+        const std::size_t total = std::size_t(n_) + std::size_t(m);
+        growKeeping(pos_, total);
+        growKeeping(vel_, total);
+        growKeeping(id_, total);
+        exec_.uploadAt(pos_, std::size_t(n_), batch.pos.data(), std::size_t(m));
+        exec_.uploadAt(vel_, std::size_t(n_), batch.vel.data(), std::size_t(m));
+        exec_.uploadAt(id_, std::size_t(n_), batch.id.data(), std::size_t(m));
+        n_ = Index(total);
+        fitScratch();
+    }
+
+    // The owned particles (ghosts left out), in the current order.
+    void downloadOwned(ParticleBatch& out) override {
+        const Index n = n_;
+        flags_.resize(std::size_t(n));
+        Index* owned = flags_.data();
+        const Real4* pos = pos_.data();
+        exec_.forEach(n, [=] WEIR_HD(Index i) { owned[i] = isGhost(pos[i]) ? 0 : 1; });
+        gather(owned, out);
+    }
+
+    // counts[b] += owned particles with coordinate in [lo + b w, lo + (b + 1) w) along `axis`
+    // (clamped into the first and last bins).
+    void histogram(int axis, double lo, double binWidth, std::vector<Index>& counts) override {
+        const Index bins = Index(counts.size());
+        Buffer<Index> bin;
+        bin.resize(std::size_t(bins));
+        Index* b = bin.data();
+        exec_.forEach(bins, [=] WEIR_HD(Index k) { b[k] = 0; });
+        const Real4* pos = pos_.data();
+        const Slab along{axis, 0, 0};
+        const double inverse = 1.0 / binWidth;
+        exec_.forEach(n_, [=] WEIR_HD(Index i) {
+            if (!isGhost(pos[i])) {
+                const double at = (double(along.coordinate(pos[i])) - lo) * inverse;
+                const Index k = at < 0 ? 0 : (at >= double(bins) ? bins - 1 : Index(at));
+                atomicFetchAdd(&b[k], Index(1));
+            }
+        });
+        std::vector<Index> here(static_cast<std::size_t>(bins));
+        exec_.download(bin, here.data(), here.size());
+        for (std::size_t k = 0; k < counts.size(); ++k) {
+            counts[k] += here[k];
+        }
+    }
+
+    StepClock clock() override { return exec_.readOne(clock_, 0); }
+    void setClock(const StepClock& clock) override { exec_.writeOne(clock_, 0, clock); }
+    void stepOnce() override { step(); }
+
+    // Moves the particles whose flag is 1 into (pos, vel, id) from `offset` on, in order; returns
+    // how many. Turns `flag` into its prefix sum.
+    Index compactInto(Index* flag, Buffer<Real4>& toPos, Buffer<Real4>& toVel, Buffer<Index>& toId,
+                      Index offset) {
+        const Index n = n_;
+        if (n == 0) {
+            return 0;
+        }
+        exec_.inclusiveScan(flag, flag, n);
+        const Index count = exec_.readOne(flags_, std::size_t(flag - flags_.data()) + n - 1);
+        growKeeping(toPos, std::size_t(offset + count));
+        growKeeping(toVel, std::size_t(offset + count));
+        growKeeping(toId, std::size_t(offset + count));
+        const Real4 *pos = pos_.data(), *vel = vel_.data();
+        const Index* id = id_.data();
+        Real4 *outPos = toPos.data(), *outVel = toVel.data();
+        Index* outId = toId.data();
+        exec_.forEach(n, [=] WEIR_HD(Index i) {
+            const Index before = i > 0 ? flag[i - 1] : 0;
+            if (flag[i] > before) {
+                outPos[offset + before] = pos[i];
+                outVel[offset + before] = vel[i];
+                outId[offset + before] = id[i];
+            }
+        });
+        return count;
+    }
+
+    // Copies the particles whose flag is 1 to the host, appended to `out`; returns how many.
+    Index gather(Index* flag, ParticleBatch& out) {
+        const Index count = compactInto(flag, stagePos_, stageVel_, stageId_, 0);
+        const std::size_t at = out.size();
+        out.resize(at + std::size_t(count));
+        exec_.downloadFrom(stagePos_, 0, out.pos.data() + at, std::size_t(count));
+        exec_.downloadFrom(stageVel_, 0, out.vel.data() + at, std::size_t(count));
+        exec_.downloadFrom(stageId_, 0, out.id.data() + at, std::size_t(count));
+        return count;
+    }
+
+    // Resizes `buffer` to n elements keeping its first min(size, n) (a quarter spare on growth).
+    template <class T>
+    void growKeeping(Buffer<T>& buffer, std::size_t n) {
+        if (n <= buffer.capacity()) {
+            buffer.resize(n);
+            return;
+        }
+        Buffer<T> bigger;
+        bigger.resize(n + n / 4);
+        const T* from = buffer.data();
+        T* to = bigger.data();
+        exec_.forEach(Index(buffer.size()), [=] WEIR_HD(Index i) { to[i] = from[i]; });
+        bigger.resize(n);
+        buffer.swap(bigger);
+    }
+
+    // Sizes the scratch arrays of the step to the particle count.
+    void fitScratch() {
+        if (mode_ != NeighbourMode::Dense) {
+            acc_.resize(std::size_t(n_));  // the dense path fuses force and displacement
+        }
+        if (mode_ == NeighbourMode::Brute) {
+            return;  // no reordering (a distributed run's compaction sizes them as it needs)
+        }
+        sortedPos_.resize(std::size_t(n_));
+        sortedVel_.resize(std::size_t(n_));
+        sortedId_.resize(std::size_t(n_));
     }
 
    private:
@@ -480,6 +664,9 @@ class SphSolver final : public Simulation {
     bool targetSet_ = false;
     Buffer<Real4> pos_, vel_, acc_, sortedPos_, sortedVel_;
     Buffer<Index> id_, sortedId_;
+    Buffer<Index> flags_;                 // distributed runs: selection flags and their sums
+    Buffer<Real4> stagePos_, stageVel_;  // distributed runs: particles on their way to the host
+    Buffer<Index> stageId_;
     Buffer<ObstacleBox> boxes_;
     Buffer<ObstacleSphere> spheres_;
     Buffer<FaultRecord> fault_;

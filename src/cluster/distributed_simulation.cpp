@@ -1,0 +1,290 @@
+// The distributed step: exchange, agree on dt, step each slab, rebalance now and then.
+#include "cluster/distributed_simulation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "cluster/particle_routing.h"
+#include "core/check.h"
+#include "physics/eos.h"
+#include "scene/seeding.h"
+
+namespace weir {
+
+namespace {
+
+constexpr double kNoTarget = 1e300;
+
+// Bins of a histogram over [lo, lo + extent) along an axis.
+AxisHistogram emptyHistogram(const SphParams& params, int axis, int bins) {
+    AxisHistogram h;
+    h.axis = axis;
+    h.lo = double(params.boxMin[axis]);
+    h.binWidth = std::max(1e-12, double(params.boxMax[axis] - params.boxMin[axis]) / bins);
+    h.counts.assign(std::size_t(bins), 0);
+    return h;
+}
+
+void addToHistogram(AxisHistogram& h, double c, std::int64_t weight) {
+    const double at = (c - h.lo) / h.binWidth;
+    const std::int64_t bins = std::int64_t(h.counts.size());
+    const std::int64_t b = at < 0 ? 0 : std::min(bins - 1, std::int64_t(at));
+    h.counts[std::size_t(b)] += weight;
+}
+
+// The setup's particles inside `share`, with their global ids (seeds: the backend seeds only
+// those; `expected` of them, about, for its memory check).
+SimulationSetup shareOf(const SimulationSetup& whole, const Slab& share, std::int64_t expected) {
+    SimulationSetup part;
+    part.params = whole.params;
+    part.grid = whole.grid;
+    part.obstacleBoxes = whole.obstacleBoxes;
+    part.obstacleSpheres = whole.obstacleSpheres;
+    part.boundary = whole.boundary;
+    part.share = share;
+    part.shareEstimate = expected;
+    if (whole.particles.size() == 0) {
+        part.seeds = whole.seeds;  // seeded inside `share` by the backend
+        return part;
+    }
+    const HostParticles& p = whole.particles;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const Vec3d x(p.x[i], p.y[i], p.z[i]);
+        if (share.contains(share.coordinate(x))) {
+            part.particles.push(x, Vec3d(p.vx[i], p.vy[i], p.vz[i]));
+            part.particleIds.push_back(Index(i));
+        }
+    }
+    return part;
+}
+
+}  // namespace
+
+AxisHistogram setupHistogram(const SimulationSetup& setup, int axis, int bins) {
+    AxisHistogram h = emptyHistogram(setup.params, axis, bins);
+    const HostParticles& p = setup.particles;
+    if (p.size() > 0) {
+        const std::vector<Real>& c = axis == 0 ? p.x : (axis == 1 ? p.y : p.z);
+        for (Real v : c) {
+            addToHistogram(h, double(v), 1);
+        }
+        return h;
+    }
+    // Seeds: every s-th lattice point along each axis, standing for s^3 points, about a
+    // million samples in all; the first rebalance corrects what sampling misses.
+    const SeedShapes shapes = setup.seeds.shapes();
+    for (const SeedLattice& lattice : setup.seeds.lattices) {
+        const std::int64_t s = std::max<std::int64_t>(
+            1, std::int64_t(std::cbrt(double(lattice.points()) / 1e6)));
+        for (std::int64_t k = s / 2; k < lattice.nz; k += s) {
+            for (std::int64_t j = s / 2; j < lattice.ny; j += s) {
+                for (std::int64_t i = s / 2; i < lattice.nx; i += s) {
+                    const Vec3d x = lattice.point((k * lattice.ny + j) * lattice.nx + i);
+                    if (keepSeed(shapes, lattice, x)) {
+                        addToHistogram(h, axis == 0 ? x.x : (axis == 1 ? x.y : x.z), s * s * s);
+                    }
+                }
+            }
+        }
+    }
+    return h;
+}
+
+DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend,
+                                             NeighbourMode mode, SimulationSetup setup,
+                                             DistributedOptions options)
+    : comm_(comm),
+      options_(options),
+      decomposition_(balancedDecomposition(
+          setupHistogram(setup, longestAxis(setup.params.boxMin, setup.params.boxMax),
+                         options.histogramBins),
+          comm.size())) {
+    total_ = setup.particleCount();
+    const int axis = decomposition_.axis();
+    haloWidth_ = 2.0 * double(setup.params.kernel.h);
+    boxLo_ = double(setup.params.boxMin[axis]);
+    boxExtent_ = double(setup.params.boxMax[axis] - setup.params.boxMin[axis]);
+    // Every rank takes the same neighbour mode, the one a single run of the whole scene takes.
+    mode = resolveNeighbourMode(mode, setup.grid, total_);
+    const AxisHistogram histogram = setupHistogram(setup, axis, options.histogramBins);
+    const std::int64_t expected =
+        countsPerRank(histogram, decomposition_)[std::size_t(comm_.rank())];
+    local_ = makeSimulation(backend, mode,
+                            shareOf(setup, decomposition_.slab(comm_.rank()), expected));
+}
+
+void DistributedSimulation::notAPart() {
+    throw std::logic_error("a distributed simulation is not one rank's part");
+}
+
+std::string DistributedSimulation::deviceName() const {
+    return local_->deviceName() + ", " + std::to_string(comm_.size()) + " ranks";
+}
+
+void DistributedSimulation::exchange() {
+    const auto start = std::chrono::steady_clock::now();
+    const int self = comm_.rank();
+    const Slab share = decomposition_.slab(self);
+    std::int64_t sent = 0;
+    auto send = [&](const std::vector<ParticleBatch>& batches) {
+        std::vector<Bytes> messages(batches.size());
+        for (std::size_t r = 0; r < batches.size(); ++r) {
+            if (int(r) != self && batches[r].size() > 0) {
+                messages[r] = packParticles(batches[r]);
+                sent += std::int64_t(messages[r].size());
+            }
+        }
+        ParticleBatch received = batches[std::size_t(self)];  // kept here (NaN positions)
+        for (const Bytes& message : comm_.exchange(messages)) {
+            unpackParticles(message, received);
+        }
+        return received;
+    };
+    ParticleBatch leaving;
+    local_->takeLeavers(share, leaving);
+    const ParticleBatch arrivals = send(routeLeavers(leaving, decomposition_, self));
+    local_->append(arrivals);
+    ParticleBatch nearBorders;
+    if (comm_.size() > 1) {
+        local_->copyBorderParticles(share, haloWidth_, nearBorders);
+    }
+    ParticleBatch ghosts = send(routeGhosts(nearBorders, decomposition_, self, haloWidth_));
+    local_->append(ghosts);
+    stats_.arrivals = std::int64_t(arrivals.size());
+    stats_.ghosts = std::int64_t(ghosts.size());
+    stats_.owned = std::int64_t(local_->particleCount()) - stats_.ghosts;
+    stats_.bytesSent = sent;
+    stats_.exchangeSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool DistributedSimulation::agreeOnClock() {
+    StepClock clock = local_->clock();
+    const FaultRecord fault = local_->fault();
+    std::vector<double> values{double(bitsFloat(clock.maxSpeed2)),
+                               double(bitsFloat(clock.maxAccel2)), double(fault.code != 0)};
+    comm_.maxInPlace(values);
+    clock.maxSpeed2 = floatBits(float(values[0]));
+    clock.maxAccel2 = floatBits(float(values[1]));
+    local_->setClock(clock);
+    faulted_ = values[2] > 0;
+    return faulted_;
+}
+
+void DistributedSimulation::stepOnce() {
+    exchange();
+    if (agreeOnClock()) {
+        return;  // some rank blew up: fault() tells which and how
+    }
+    local_->stepOnce();
+    if (++stepsSinceBalance_ >= options_.rebalanceEvery) {
+        rebalance();
+    }
+}
+
+void DistributedSimulation::advanceTo(double target) {
+    StepClock clock = local_->clock();
+    clock.target = target;
+    local_->setClock(clock);
+    while (local_->clock().time < target && !faulted_) {
+        stepOnce();
+    }
+}
+
+void DistributedSimulation::advance(int steps) {
+    StepClock clock = local_->clock();
+    clock.target = kNoTarget;
+    local_->setClock(clock);
+    for (int s = 0; s < steps && !faulted_; ++s) {
+        stepOnce();
+    }
+}
+
+void DistributedSimulation::computeDensity() {
+    exchange();
+    local_->computeDensity();
+}
+
+void DistributedSimulation::rebalance() {
+    stepsSinceBalance_ = 0;
+    if (comm_.size() == 1) {
+        return;
+    }
+    const int bins = options_.histogramBins;
+    std::vector<Index> local(std::size_t(bins), 0);
+    local_->histogram(decomposition_.axis(), boxLo_, boxExtent_ / bins, local);
+    AxisHistogram h;
+    h.axis = decomposition_.axis();
+    h.lo = boxLo_;
+    h.binWidth = boxExtent_ / bins;
+    h.counts.assign(local.begin(), local.end());
+    comm_.sumInPlace(h.counts);
+    if (imbalance(countsPerRank(h, decomposition_)) > options_.rebalanceAbove) {
+        decomposition_ = balancedDecomposition(h, comm_.size());
+        ++stats_.rebalances;
+    }
+}
+
+void DistributedSimulation::setDecomposition(const Decomposition& decomposition) {
+    if (decomposition.ranks() != comm_.size()) {
+        throw std::invalid_argument("a decomposition of " +
+                                    std::to_string(decomposition.ranks()) + " slabs for " +
+                                    std::to_string(comm_.size()) + " ranks");
+    }
+    decomposition_ = decomposition;
+}
+
+FaultRecord DistributedSimulation::fault() {
+    const FaultRecord mine = local_->fault();
+    Bytes bytes(sizeof mine);
+    std::memcpy(bytes.data(), &mine, sizeof mine);
+    for (const Bytes& theirs : comm_.allGather(bytes)) {
+        FaultRecord record;
+        std::memcpy(&record, theirs.data(), sizeof record);
+        if (record.code != 0) {
+            return record;  // the lowest rank's first fault
+        }
+    }
+    return mine;
+}
+
+void DistributedSimulation::download(HostParticles& out) {
+    ParticleBatch mine;
+    local_->downloadOwned(mine);
+    const std::vector<Bytes> all = comm_.gatherToRoot(packParticles(mine));
+    out.resize(0);
+    if (comm_.rank() != 0) {
+        return;
+    }
+    ParticleBatch every;
+    for (const Bytes& message : all) {
+        unpackParticles(message, every);
+    }
+    if (std::int64_t(every.size()) != total_) {
+        throw SimulationError("the ranks hold " + std::to_string(every.size()) +
+                              " particles in all, not the " + std::to_string(total_) +
+                              " the run started with");
+    }
+    out.resize(every.size());
+    const SphParams& params = local_->params();
+    for (std::size_t k = 0; k < every.size(); ++k) {
+        const std::size_t i = std::size_t(every.id[k]);
+        if (i >= every.size()) {
+            throw SimulationError("a rank sent particle id " + std::to_string(i) +
+                                  ", past the run's " + std::to_string(total_));
+        }
+        out.x[i] = every.pos[k].x;
+        out.y[i] = every.pos[k].y;
+        out.z[i] = every.pos[k].z;
+        out.vx[i] = every.vel[k].x;
+        out.vy[i] = every.vel[k].y;
+        out.vz[i] = every.vel[k].z;
+        out.rho[i] = every.vel[k].w;
+        out.p[i] = pressureFromDensity(params, every.vel[k].w);
+    }
+}
+
+}  // namespace weir

@@ -1,0 +1,102 @@
+// One simulation over several ranks (paper §9's future work: fluid too large for one GPU): each
+// rank steps the particles of its slab on its own backend; between steps it hands the particles
+// that left its slab to their new owners and takes ghost copies of its neighbours' particles
+// within two smoothing radii of its borders (the ghosts within one radius then have their whole
+// neighbourhood, so their density is exact and the owned particles' forces match a single-rank
+// run). The ranks agree on each step's dt by one reduction; borders move to balance the counts.
+#pragma once
+
+#include <memory>
+
+#include "cluster/communicator.h"
+#include "cluster/decomposition.h"
+#include "solver/simulation.h"
+
+namespace weir {
+
+struct DistributedOptions {
+    int rebalanceEvery = 20;       // steps between load checks
+    double rebalanceAbove = 1.02;  // max/mean particles per rank that moves the borders
+    int histogramBins = 4096;      // resolution of the border placement along the axis
+};
+
+// What the last exchange moved, for logs and `weir bench`.
+struct ExchangeStats {
+    std::int64_t owned = 0;     // this rank's particles
+    std::int64_t ghosts = 0;    // ghost copies received
+    std::int64_t arrivals = 0;  // particles handed over to this rank
+    std::int64_t bytesSent = 0;
+    double exchangeSeconds = 0;  // host time of the last exchange (selection, transfer, append)
+    int rebalances = 0;          // border moves so far
+};
+
+// The histogram of a setup's particles along `axis` of its container (seeds: sampled).
+AxisHistogram setupHistogram(const SimulationSetup& setup, int axis, int bins);
+
+class DistributedSimulation final : public Simulation {
+   public:
+    // Every rank passes the same whole-scene setup; each keeps its share. `comm` must outlive
+    // this object.
+    DistributedSimulation(Communicator& comm, Backend backend, NeighbourMode mode,
+                          SimulationSetup setup, DistributedOptions options = {});
+
+    void advance(int steps) override;
+    void advanceTo(double time) override;
+    void computeDensity() override;
+    // Collective: rank 0 receives every particle, in the original order; the others get none.
+    void download(HostParticles& out) override;
+    // Collective: the first fault of any rank.
+    FaultRecord fault() override;
+    void synchronize() override { local_->synchronize(); }
+    void runStage(Stage stage) override { local_->runStage(stage); }
+    void setTiming(bool on) override { local_->setTiming(on); }
+    const StageTimes& stageTimes() const override { return local_->stageTimes(); }
+    void clearStageTimes() override { local_->clearStageTimes(); }
+    Backend backend() const override { return local_->backend(); }
+    NeighbourMode neighbourMode() const override { return local_->neighbourMode(); }
+    std::string deviceName() const override;
+    std::size_t bytesHeld() const override { return local_->bytesHeld(); }
+    Index occupiedCells() const override { return local_->occupiedCells(); }
+    const SphParams& params() const override { return local_->params(); }
+    Index particleCount() const override { return Index(total_); }
+    long long stepCount() const override { return local_->stepCount(); }
+    double time() const override { return local_->time(); }
+
+    // A distributed run is not itself one rank's part.
+    void takeLeavers(const Slab&, ParticleBatch&) override { notAPart(); }
+    void copyBorderParticles(const Slab&, double, ParticleBatch&) override { notAPart(); }
+    void append(const ParticleBatch&) override { notAPart(); }
+    void downloadOwned(ParticleBatch& out) override { local_->downloadOwned(out); }
+    void histogram(int, double, double, std::vector<Index>&) override { notAPart(); }
+    StepClock clock() override { return local_->clock(); }
+    void setClock(const StepClock& clock) override { local_->setClock(clock); }
+    void stepOnce() override;
+
+    const Decomposition& decomposition() const { return decomposition_; }
+    const ExchangeStats& exchangeStats() const { return stats_; }
+    Communicator& communicator() { return comm_; }
+    // Moves the borders now if the counts are out of balance (collective).
+    void rebalance();
+    // Sets the borders (the same on every rank); particles move at the next exchange.
+    void setDecomposition(const Decomposition& decomposition);
+
+   private:
+    [[noreturn]] static void notAPart();
+    void exchange();
+    // Shares each rank's largest speed and acceleration (the dt is the same everywhere) and
+    // whether any rank has faulted; returns true if one has.
+    bool agreeOnClock();
+
+    Communicator& comm_;
+    DistributedOptions options_;
+    std::unique_ptr<Simulation> local_;
+    Decomposition decomposition_;
+    std::int64_t total_ = 0;
+    double haloWidth_ = 0;
+    double boxLo_ = 0, boxExtent_ = 0;
+    int stepsSinceBalance_ = 0;
+    bool faulted_ = false;
+    ExchangeStats stats_;
+};
+
+}  // namespace weir
