@@ -11,7 +11,9 @@ packages=(cmake ninja-build g++ pkg-config libgtest-dev libbenchmark-dev nlohman
           # GLFW, libpng; Mesa's software renderer for machines without a GPU; Xvfb for the
           # window test; ffmpeg for videos
           libglfw3-dev libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0 libpng-dev xvfb xauth
-          ffmpeg)
+          ffmpeg
+          # distributed runs (mpirun -n R weir run): OpenMPI
+          libopenmpi-dev openmpi-bin)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -49,36 +49,6 @@ const std::vector<std::pair<std::string, std::string>> kStageRows = {
     {"integrate", "Displacement computation"},
 };
 
-std::int64_t parseCount(const std::string& text) {
-    std::size_t used = 0;
-    double value = std::stod(text, &used);
-    std::string suffix = text.substr(used);
-    if (suffix == "k" || suffix == "K") {
-        value *= 1e3;
-    } else if (suffix == "m" || suffix == "M") {
-        value *= 1e6;
-    } else if (suffix == "g" || suffix == "G" || suffix == "b" || suffix == "B") {
-        value *= 1e9;
-    } else if (!suffix.empty()) {
-        throw std::invalid_argument("bad particle count '" + text + "': use e.g. 10000, 50k, 1M");
-    }
-    if (value < 1 || value > 2147483647.0) {
-        throw std::invalid_argument("particle count '" + text + "' out of range [1, 2147483647]");
-    }
-    return std::int64_t(value);
-}
-
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> items;
-    std::stringstream in(text);
-    for (std::string item; std::getline(in, item, ',');) {
-        if (!item.empty()) {
-            items.push_back(item);
-        }
-    }
-    return items;
-}
-
 // Mean neighbours per particle of a run's record; NaN where not counted.
 double neighboursOf(const nlohmann::json& run) {
     const nlohmann::json& v = run["neighboursPerParticle"];
@@ -129,7 +99,41 @@ std::string fixed(double v, int digits) {
 
 }  // namespace
 
+// Particle counts as users write them: 10000, 50k, 1M, 1B.
+std::int64_t parseCount(const std::string& text) {
+    std::size_t used = 0;
+    double value = std::stod(text, &used);
+    std::string suffix = text.substr(used);
+    if (suffix == "k" || suffix == "K") {
+        value *= 1e3;
+    } else if (suffix == "m" || suffix == "M") {
+        value *= 1e6;
+    } else if (suffix == "g" || suffix == "G" || suffix == "b" || suffix == "B") {
+        value *= 1e9;
+    } else if (!suffix.empty()) {
+        throw std::invalid_argument("bad particle count '" + text + "': use e.g. 10000, 50k, 1M");
+    }
+    if (value < 1 || value > 2147483647.0) {
+        throw std::invalid_argument("particle count '" + text + "' out of range [1, 2147483647]");
+    }
+    return std::int64_t(value);
+}
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> items;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) {
+        if (!item.empty()) {
+            items.push_back(item);
+        }
+    }
+    return items;
+}
+
 int benchCommand(const BenchOptions& options, SpriteDrawTimer* spriteTimer) {
+    if (options.scaling) {
+        return scalingBenchCommand(options);
+    }
     try {
         Scene scene = options.scene.empty()
                           ? builtinScene("dam_break")

@@ -41,6 +41,7 @@ struct BenchOptions {
     std::string outDir = "bench-out";
     bool noPlot = false;
     bool noRender = false;  // skip the point-sprite rendering row
+    bool scaling = false;   // weak and strong scaling of distributed runs (under mpirun)
 };
 
 struct ValidateOptions {
@@ -153,6 +154,12 @@ class SpriteDrawTimer {
 };
 
 int benchCommand(const BenchOptions& options, SpriteDrawTimer* spriteTimer = nullptr);
+// `weir bench --scaling` (cli/scaling_bench.cpp).
+int scalingBenchCommand(const BenchOptions& options);
+// "10000", "50k", "1M", "1B" as a particle count; throws std::invalid_argument.
+std::int64_t parseCount(const std::string& text);
+// "a,b,,c" as {"a", "b", "c"}.
+std::vector<std::string> splitList(const std::string& text);
 int infoCommand();
 int validateCommand(const ValidateOptions& options);
 

@@ -134,6 +134,9 @@ int weirMain(int argc, char** argv) {
     benchCmd->add_option("--out,-o", bench.outDir, "Directory for bench.json, bench.csv, bench.png")
         ->capture_default_str();
     benchCmd->add_flag("--no-plot", bench.noPlot, "Skip the PNG plot");
+    benchCmd->add_flag("--scaling", bench.scaling,
+                       "Weak and strong scaling of distributed runs: start under mpirun -n R; "
+                       "--sizes are particles per rank (weak) and in all (strong)");
     benchCmd->add_flag("--no-render", bench.noRender,
                        "Skip the point-sprite rendering row (drawn offscreen with OpenGL)");
 
@@ -315,7 +318,7 @@ int weirMain(int argc, char** argv) {
     if (benchCmd->parsed()) {
         std::unique_ptr<SpriteDrawTimer> spriteTimer;
 #if defined(WEIR_HAS_RENDER)
-        if (!bench.noRender) {
+        if (!bench.noRender && !bench.scaling) {
             try {
                 spriteTimer = makeSpriteDrawTimer();
             } catch (const std::exception& e) {
