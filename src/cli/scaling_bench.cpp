@@ -64,8 +64,12 @@ SimulationSetup setupFor(const Scene& scene, std::int64_t count) {
 }
 
 Timing distributedTiming(Communicator& comm, const Scene& scene, std::int64_t count,
-                         Backend backend, NeighbourMode mode, const BenchOptions& options) {
-    DistributedSimulation sim(comm, backend, mode, setupFor(scene, count));
+                         Backend backend, NeighbourMode mode, const BenchOptions& options,
+                         HaloTransport transport, std::string* used) {
+    DistributedOptions distributed;
+    distributed.transport = transport;
+    DistributedSimulation sim(comm, backend, mode, setupFor(scene, count), distributed);
+    *used = sim.exchangeStats().transport;
     Timing t = timeSteps(sim, comm, options.warmup, options.steps, 5);
     const ExchangeStats& stats = sim.exchangeStats();
     std::vector<double> most{stats.exchangeSeconds * 1000, double(stats.ghosts)};
@@ -118,10 +122,22 @@ int scalingBenchCommand(const BenchOptions& options) {
             world->maxInPlace(shared);
             one.stepMs = shared[0];
             one.particles = std::int64_t(shared[1]);
-            const Timing weak =
-                distributedTiming(*world, scene, n * ranks, backend, mode, options);
-            const Timing strong = distributedTiming(*world, scene, n, backend, mode, options);
+            std::string transport, hostTransport;
+            const Timing weak = distributedTiming(*world, scene, n * ranks, backend, mode, options,
+                                                  HaloTransport::Auto, &transport);
+            const Timing strong = distributedTiming(*world, scene, n, backend, mode, options,
+                                                    HaloTransport::Auto, &transport);
             nlohmann::json run;
+            run["transport"] = transport;
+            if (transport != "host" && ranks > 1) {
+                // The same weak run with ghosts staged through the host, for comparison.
+                const Timing staged = distributedTiming(*world, scene, n * ranks, backend, mode,
+                                                        options, HaloTransport::Host,
+                                                        &hostTransport);
+                run["weakHostStaged"] = {{"stepMs", staged.stepMs},
+                                         {"exchangeMs", staged.exchangeMs},
+                                         {"efficiency", one.stepMs / staged.stepMs}};
+            }
             auto put = [](const Timing& t) {
                 return nlohmann::json{{"particles", t.particles},     {"stepMs", t.stepMs},
                                       {"exchangeMs", t.exchangeMs},   {"ghostsMax", t.ghosts},
@@ -146,6 +162,14 @@ int scalingBenchCommand(const BenchOptions& options) {
                     (long long)strong.particles, ranks, strong.stepMs,
                     run["strongSpeedup"].get<double>(),
                     100 * run["strongEfficiency"].get<double>());
+                std::printf("  halo transport %s", transport.c_str());
+                if (run.contains("weakHostStaged")) {
+                    std::printf("; weak with the halo staged through the host: %.4f ms/step, "
+                                "efficiency %.1f%%",
+                                run["weakHostStaged"]["stepMs"].get<double>(),
+                                100 * run["weakHostStaged"]["efficiency"].get<double>());
+                }
+                std::printf("\n");
                 std::fflush(stdout);
             }
         }

@@ -63,6 +63,20 @@ SimulationSetup shareOf(const SimulationSetup& whole, const Slab& share, std::in
 
 }  // namespace
 
+HaloTransport parseHaloTransport(const std::string& name) {
+    if (name == "auto") {
+        return HaloTransport::Auto;
+    }
+    if (name == "host") {
+        return HaloTransport::Host;
+    }
+    if (name == "nccl") {
+        return HaloTransport::Nccl;
+    }
+    throw std::invalid_argument("unknown halo transport '" + name +
+                                "': allowed are auto, host, nccl");
+}
+
 AxisHistogram setupHistogram(const SimulationSetup& setup, int axis, int bins) {
     AxisHistogram h = emptyHistogram(setup.params, axis, bins);
     const HostParticles& p = setup.particles;
@@ -114,6 +128,16 @@ DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend
         countsPerRank(histogram, decomposition_)[std::size_t(comm_.rank())];
     local_ = makeSimulation(backend, mode,
                             shareOf(setup, decomposition_.slab(comm_.rank()), expected));
+    const bool gpu = backend == Backend::Cuda && comm_.size() > 1;
+    if (options.transport == HaloTransport::Nccl && !(gpu && NcclTransport::available())) {
+        throw std::invalid_argument(
+            "the nccl halo transport needs the cuda backend, more than one rank and a weir "
+            "built with NCCL");
+    }
+    if (gpu && options.transport != HaloTransport::Host && NcclTransport::available()) {
+        nccl_ = std::make_unique<NcclTransport>(comm_);
+    }
+    stats_.transport = nccl_ ? "nccl" : "host";
 }
 
 void DistributedSimulation::notAPart() {
@@ -147,18 +171,58 @@ void DistributedSimulation::exchange() {
     local_->takeLeavers(share, leaving);
     const ParticleBatch arrivals = send(routeLeavers(leaving, decomposition_, self));
     local_->append(arrivals);
-    ParticleBatch nearBorders;
-    if (comm_.size() > 1) {
-        local_->copyBorderParticles(share, haloWidth_, nearBorders);
+    if (nccl_) {
+        stats_.ghosts = exchangeGhostsOnDevice(share, &sent);
+    } else {
+        ParticleBatch nearBorders;
+        if (comm_.size() > 1) {
+            local_->copyBorderParticles(share, haloWidth_, nearBorders);
+        }
+        ParticleBatch ghosts = send(routeGhosts(nearBorders, decomposition_, self, haloWidth_));
+        local_->append(ghosts);
+        stats_.ghosts = std::int64_t(ghosts.size());
     }
-    ParticleBatch ghosts = send(routeGhosts(nearBorders, decomposition_, self, haloWidth_));
-    local_->append(ghosts);
     stats_.arrivals = std::int64_t(arrivals.size());
-    stats_.ghosts = std::int64_t(ghosts.size());
     stats_.owned = std::int64_t(local_->particleCount()) - stats_.ghosts;
     stats_.bytesSent = sent;
     stats_.exchangeSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::int64_t DistributedSimulation::exchangeGhostsOnDevice(const Slab& share,
+                                                          std::int64_t* bytesSent) {
+    const int self = comm_.rank();
+    std::vector<Slab> windows;
+    std::vector<int> toRanks;
+    for (int r = 0; r < comm_.size(); ++r) {
+        const Slab theirs = decomposition_.slab(r);
+        Slab window{theirs.axis, theirs.lo - haloWidth_, theirs.hi + haloWidth_};
+        if (r != self && window.lo < share.hi && window.hi > share.lo) {
+            windows.push_back(window);
+            toRanks.push_back(r);
+        }
+    }
+    std::vector<std::int64_t> sendCounts;
+    const ParticleSpans staged = local_->stageWindows(windows, sendCounts);
+    std::vector<Bytes> told(std::size_t(comm_.size()));
+    for (std::size_t k = 0; k < toRanks.size(); ++k) {
+        Bytes& message = told[std::size_t(toRanks[k])];
+        message.resize(sizeof(std::int64_t));
+        std::memcpy(message.data(), &sendCounts[k], sizeof(std::int64_t));
+        *bytesSent += sendCounts[k] * std::int64_t(2 * sizeof(Real4) + sizeof(Index));
+    }
+    const std::vector<Bytes> heard = comm_.exchange(told);
+    std::vector<std::int64_t> receiveCounts(heard.size(), 0);
+    std::int64_t total = 0;
+    for (std::size_t r = 0; r < heard.size(); ++r) {
+        if (heard[r].size() == sizeof(std::int64_t)) {
+            std::memcpy(&receiveCounts[r], heard[r].data(), sizeof(std::int64_t));
+        }
+        total += receiveCounts[r];
+    }
+    const ParticleSpans into = local_->appendSpace(std::size_t(total));
+    nccl_->exchange(staged, toRanks, sendCounts, into, receiveCounts, local_->deviceStream());
+    return total;
 }
 
 bool DistributedSimulation::agreeOnClock() {

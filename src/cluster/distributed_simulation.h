@@ -10,11 +10,18 @@
 
 #include "cluster/communicator.h"
 #include "cluster/decomposition.h"
+#include "cluster/nccl_transport.h"
 #include "solver/simulation.h"
 
 namespace weir {
 
+// How ghost copies travel: staged through host memory and MPI (any backend), or GPU to GPU by
+// NCCL (CUDA runs; the default there when weir has NCCL).
+enum class HaloTransport { Auto, Host, Nccl };
+HaloTransport parseHaloTransport(const std::string& name);  // auto, host, nccl
+
 struct DistributedOptions {
+    HaloTransport transport = HaloTransport::Auto;
     int rebalanceEvery = 20;       // steps between load checks
     double rebalanceAbove = 1.02;  // max/mean particles per rank that moves the borders
     int histogramBins = 4096;      // resolution of the border placement along the axis
@@ -27,6 +34,7 @@ struct ExchangeStats {
     std::int64_t arrivals = 0;  // particles handed over to this rank
     std::int64_t bytesSent = 0;
     double exchangeSeconds = 0;  // host time of the last exchange (selection, transfer, append)
+    std::string transport;       // "host" or "nccl"
     int rebalances = 0;          // border moves so far
 };
 
@@ -68,6 +76,11 @@ class DistributedSimulation final : public Simulation {
     void append(const ParticleBatch&) override { notAPart(); }
     void downloadOwned(ParticleBatch& out) override { local_->downloadOwned(out); }
     void histogram(int, double, double, std::vector<Index>&) override { notAPart(); }
+    ParticleSpans stageWindows(const std::vector<Slab>&, std::vector<std::int64_t>&) override {
+        notAPart();
+    }
+    ParticleSpans appendSpace(std::size_t) override { notAPart(); }
+    void* deviceStream() override { return local_->deviceStream(); }
     StepClock clock() override { return local_->clock(); }
     void setClock(const StepClock& clock) override { local_->setClock(clock); }
     void stepOnce() override;
@@ -83,6 +96,8 @@ class DistributedSimulation final : public Simulation {
    private:
     [[noreturn]] static void notAPart();
     void exchange();
+    // The ghosts' part of exchange() by NCCL: staged, counted, sent and received on the GPU.
+    std::int64_t exchangeGhostsOnDevice(const Slab& share, std::int64_t* bytesSent);
     // Shares each rank's largest speed and acceleration (the dt is the same everywhere) and
     // whether any rank has faulted; returns true if one has.
     bool agreeOnClock();
@@ -90,6 +105,7 @@ class DistributedSimulation final : public Simulation {
     Communicator& comm_;
     DistributedOptions options_;
     std::unique_ptr<Simulation> local_;
+    std::unique_ptr<NcclTransport> nccl_;  // null: ghosts staged through the host
     Decomposition decomposition_;
     std::int64_t total_ = 0;
     double haloWidth_ = 0;

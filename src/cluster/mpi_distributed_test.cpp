@@ -25,9 +25,13 @@ Communicator& world() {
 // The largest distance between a particle in the distributed run and in the single-rank run
 // after `time` seconds, on rank 0 (-1 elsewhere).
 double divergenceAfter(Backend backend, NeighbourMode mode, const Scene& scene, double time,
-                       long long* steps = nullptr) {
+                       long long* steps = nullptr,
+                       HaloTransport transport = HaloTransport::Auto) {
     auto plain = testing::start(scene, backend, mode);
-    DistributedSimulation distributed(world(), backend, mode, buildSetup(scene, {}, nullptr));
+    DistributedOptions options;
+    options.transport = transport;
+    DistributedSimulation distributed(world(), backend, mode, buildSetup(scene, {}, nullptr),
+                                      options);
     plain->advanceTo(time);
     distributed.advanceTo(time);
     EXPECT_EQ(distributed.fault().code, 0);
@@ -69,10 +73,21 @@ TEST(Distributed, MatchesTheSingleRankRunOnTheGpu) {
         GTEST_SKIP() << "no CUDA device";
     }
     const Scene scene = testing::smallDamBreak(20000);
-    const double worst = divergenceAfter(Backend::Cuda, NeighbourMode::Dense, scene, 0.1);
-    if (world().rank() == 0) {
-        const double spacing = buildSetup(scene, {}, nullptr).params.kernel.h / 2;
-        EXPECT_LT(worst, 1e-3 * spacing) << world().size() << " ranks";
+    std::vector<HaloTransport> transports{HaloTransport::Host};
+    if (NcclTransport::available() && world().size() > 1) {
+        transports.push_back(HaloTransport::Nccl);
+    }
+    for (HaloTransport transport : transports) {
+        long long steps = 0;
+        const double worst =
+            divergenceAfter(Backend::Cuda, NeighbourMode::Dense, scene, 0.1, &steps, transport);
+        if (world().rank() == 0) {
+            const double spacing = buildSetup(scene, {}, nullptr).params.kernel.h / 2;
+            std::printf("cuda %s, %d ranks, %lld steps: largest difference %.3g of the spacing\n",
+                        transport == HaloTransport::Nccl ? "nccl" : "host", world().size(), steps,
+                        worst / spacing);
+            EXPECT_LT(worst, 1e-3 * spacing) << world().size() << " ranks";
+        }
     }
 }
 
@@ -140,6 +155,30 @@ TEST(Distributed, OwnsItsSlabAndHoldsTheHalo) {
         const std::size_t i = std::size_t(mine.id[k]);
         ASSERT_TRUE(slab.contains(slab.coordinate(mine.pos[k]))) << "particle " << i;
         ASSERT_NEAR(mine.vel[k].w, reference.rho[i], 1e-4 * reference.rho[i]) << "particle " << i;
+    }
+}
+
+// Each rank seeds only its slab on its backend (as a billion-particle run must), with the ids of
+// the host's seeding order: the gathered particles are the host's, exactly.
+TEST(Distributed, SeedsItsShareOnItsBackend) {
+    for (Backend backend : {Backend::Cpu, Backend::Cuda}) {
+        if (backend == Backend::Cuda && !cudaDeviceAvailable()) {
+            continue;
+        }
+        const Scene scene = testing::seedingScene();
+        SetupOptions onBackend;
+        onBackend.seedOnDevice = true;
+        DistributedSimulation distributed(world(), backend, NeighbourMode::Auto,
+                                          buildSetup(scene, onBackend, nullptr));
+        HostParticles got;
+        distributed.download(got);
+        if (world().rank() != 0) {
+            continue;
+        }
+        const HostParticles want = buildSetup(scene, {}, nullptr).particles;
+        ASSERT_EQ(got.size(), want.size());
+        EXPECT_EQ(testing::maxPositionDifference(got, want), 0.0) << backendName(backend);
+        EXPECT_EQ(got.vx, want.vx);
     }
 }
 

@@ -34,6 +34,13 @@ struct Slab {
     }
 };
 
+// Particles in a backend's memory (device pointers on CUDA), on their way between ranks.
+struct ParticleSpans {
+    Real4* pos = nullptr;
+    Real4* vel = nullptr;
+    Index* id = nullptr;
+};
+
 // Particles on their way between ranks, on the host: positions (w = 1 marks a ghost copy),
 // velocities with density in w, and global ids (the index in the single-rank run's order).
 struct ParticleBatch {

@@ -106,6 +106,16 @@ class Simulation {
     virtual void downloadOwned(ParticleBatch& out) = 0;
     // counts[b] += owned particles in bin b of width binWidth from lo along `axis` (clamped).
     virtual void histogram(int axis, double lo, double binWidth, std::vector<Index>& counts) = 0;
+    // Stages ghost copies (position w = 1) of the owned particles inside each window, window
+    // after window, in this backend's memory (device memory on CUDA, for NCCL to send);
+    // counts[k] = particles of window k.
+    virtual ParticleSpans stageWindows(const std::vector<Slab>& windows,
+                                       std::vector<std::int64_t>& counts) = 0;
+    // Room for `count` more particles at the end, in this backend's memory, to be written there
+    // (by NCCL) before the next step.
+    virtual ParticleSpans appendSpace(std::size_t count) = 0;
+    // The backend's CUDA stream (cudaStream_t), nullptr on the CPU.
+    virtual void* deviceStream() = 0;
     virtual StepClock clock() = 0;
     virtual void setClock(const StepClock& clock) = 0;
     // One step with the clock as it is (the caller set the shared dt inputs and target).

@@ -425,9 +425,14 @@ class SphSolver final : public Simulation {
         for (int pass = whole ? 1 : 0; pass < 2; ++pass) {
             if (pass == 1) {
                 n_ = whole ? Index(seeds.count) : counted;
-                pos_.resize(std::size_t(n_));
-                vel_.resize(std::size_t(n_));
-                id_.resize(std::size_t(n_));
+                // A share gets ghosts and arrivals every step: room for them from the start,
+                // so that the arrays need not grow (and be held twice) later.
+                const std::size_t room = std::size_t(n_) + (whole ? 0 : std::size_t(n_) / 8);
+                for (std::size_t size : {room, std::size_t(n_)}) {
+                    pos_.resize(size);
+                    vel_.resize(size);
+                    id_.resize(size);
+                }
             }
             Real4 *pos = pos_.data(), *vel = vel_.data();
             Index* id = id_.data();
@@ -573,6 +578,46 @@ class SphSolver final : public Simulation {
         }
     }
 
+    ParticleSpans stageWindows(const std::vector<Slab>& windows,
+                               std::vector<std::int64_t>& counts) override {
+        counts.assign(windows.size(), 0);
+        Index staged = 0;
+        for (std::size_t k = 0; k < windows.size(); ++k) {
+            const Index n = n_;
+            flags_.resize(std::size_t(n));
+            Index* inside = flags_.data();
+            const Real4* pos = pos_.data();
+            const Slab window = windows[k];
+            exec_.forEach(n, [=] WEIR_HD(Index i) {
+                inside[i] = !isGhost(pos[i]) && window.contains(window.coordinate(pos[i])) ? 1 : 0;
+            });
+            const Index count = compactInto(inside, stagePos_, stageVel_, stageId_, staged);
+            Real4* marked = stagePos_.data() + staged;
+            exec_.forEach(count, [=] WEIR_HD(Index i) { marked[i].w = 1; });
+            counts[k] = count;
+            staged += count;
+        }
+        return {stagePos_.data(), stageVel_.data(), stageId_.data()};
+    }
+
+    ParticleSpans appendSpace(std::size_t count) override {
+        const std::size_t at = std::size_t(n_), total = at + count;
+        growKeeping(pos_, total);
+        growKeeping(vel_, total);
+        growKeeping(id_, total);
+        n_ = Index(total);
+        fitScratch();
+        return {pos_.data() + at, vel_.data() + at, id_.data() + at};
+    }
+
+    void* deviceStream() override {
+        if constexpr (Exec::isDevice) {
+            return static_cast<void*>(exec_.stream());
+        } else {
+            return nullptr;
+        }
+    }
+
     StepClock clock() override { return exec_.readOne(clock_, 0); }
     void setClock(const StepClock& clock) override { exec_.writeOne(clock_, 0, clock); }
     void stepOnce() override { step(); }
@@ -624,7 +669,7 @@ class SphSolver final : public Simulation {
             return;
         }
         Buffer<T> bigger;
-        bigger.resize(n + n / 4);
+        bigger.resize(n + n / 16);  // both held while copying: spare little at a billion
         const T* from = buffer.data();
         T* to = bigger.data();
         exec_.forEach(Index(buffer.size()), [=] WEIR_HD(Index i) { to[i] = from[i]; });
