@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <set>
 #include <stdexcept>
+#include <unistd.h>
 
 #include "cluster/particle_routing.h"
 #include "core/check.h"
@@ -17,6 +19,12 @@ namespace weir {
 namespace {
 
 constexpr double kNoTarget = 1e300;
+
+std::string hostName() {
+    char name[256] = {};
+    gethostname(name, sizeof name - 1);
+    return name;
+}
 
 // Bins of a histogram over [lo, lo + extent) along an axis.
 AxisHistogram emptyHistogram(const SphParams& params, int axis, int bins) {
@@ -128,11 +136,21 @@ DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend
         countsPerRank(histogram, decomposition_)[std::size_t(comm_.rank())];
     local_ = makeSimulation(backend, mode,
                             shareOf(setup, decomposition_.slab(comm_.rank()), expected));
-    const bool gpu = backend == Backend::Cuda && comm_.size() > 1;
+    // NCCL wants one GPU per rank: ranks that share one (more ranks than GPUs) stage ghosts
+    // through the host.
+    bool gpuPerRank = true;
+    if (backend == Backend::Cuda && comm_.size() > 1) {
+        const std::string mine = hostName() + ":" + std::to_string(currentCudaDevice());
+        std::set<std::string> seen;
+        for (const Bytes& theirs : comm_.allGather(Bytes(mine.begin(), mine.end()))) {
+            gpuPerRank = seen.insert(std::string(theirs.begin(), theirs.end())).second && gpuPerRank;
+        }
+    }
+    const bool gpu = backend == Backend::Cuda && comm_.size() > 1 && gpuPerRank;
     if (options.transport == HaloTransport::Nccl && !(gpu && NcclTransport::available())) {
         throw std::invalid_argument(
-            "the nccl halo transport needs the cuda backend, more than one rank and a weir "
-            "built with NCCL");
+            "the nccl halo transport needs the cuda backend, more than one rank, a GPU of its "
+            "own for each rank and a weir built with NCCL");
     }
     if (gpu && options.transport != HaloTransport::Host && NcclTransport::available()) {
         nccl_ = std::make_unique<NcclTransport>(comm_);

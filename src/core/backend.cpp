@@ -10,7 +10,16 @@ namespace weir {
 #if defined(WEIR_HAS_CUDA)
 bool probeCudaDevice(std::string* description);  // core/exec_cuda.cu
 int useCudaDeviceOf(int rankOnHost);             // core/exec_cuda.cu
+int currentCudaDeviceOrdinal();                  // core/exec_cuda.cu
 #endif
+
+int currentCudaDevice() {
+#if defined(WEIR_HAS_CUDA)
+    return currentCudaDeviceOrdinal();
+#else
+    return -1;
+#endif
+}
 
 int selectCudaDevice(int rankOnHost) {
 #if defined(WEIR_HAS_CUDA)

@@ -16,6 +16,8 @@ bool cudaDeviceAvailable();
 // Makes GPU (rankOnHost mod GPUs) this process's CUDA device, one GPU per rank of a distributed
 // run; returns its ordinal, or -1 without CUDA or GPUs. Call before any CUDA work.
 int selectCudaDevice(int rankOnHost);
+// This process's CUDA device ordinal, -1 without CUDA.
+int currentCudaDevice();
 // Human-readable description of the device of a backend ("NVIDIA H100 80GB HBM3, 132 SMs, ...").
 std::string describeBackend(Backend backend);
 

@@ -131,6 +131,15 @@ bool probeCudaDevice(std::string* description) {
     return true;
 }
 
+int currentCudaDeviceOrdinal() {
+    int ordinal = -1;
+    if (cudaGetDevice(&ordinal) != cudaSuccess) {
+        cudaGetLastError();
+        return -1;
+    }
+    return ordinal;
+}
+
 int useCudaDeviceOf(int rankOnHost) {
     int count = 0;
     if (cudaGetDeviceCount(&count) != cudaSuccess || count == 0) {
