@@ -58,6 +58,8 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         Scene scene = resolveScene(options.scene);
         SetupOptions setupOptions;
         setupOptions.particleCount = options.particles;
+        // Distributed: each rank seeds only its slab, on its backend (no rank holds them all).
+        setupOptions.seedOnDevice = launchedByMpi();
         SetupReport report;
         SimulationSetup setup = buildSetup(scene, setupOptions, &report);
         const Backend backend = parseBackend(options.backend);

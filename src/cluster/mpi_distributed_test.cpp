@@ -4,6 +4,7 @@
 // needs no second launch.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -68,23 +69,37 @@ TEST(Distributed, MatchesTheSingleRankRunOnTheCpu) {
     }
 }
 
+// On the GPU, fused multiply-adds and a splashing dam break amplify rounding more than on the
+// CPU: the yardstick is how far two single-GPU runs drift apart when only the order of their
+// sums differs (the dense table against the paper's grid). A lost or wrong ghost moves particles
+// by a good part of the spacing (a halo one radius wide instead of two: 1.9 spacings here).
 TEST(Distributed, MatchesTheSingleRankRunOnTheGpu) {
     if (!cudaDeviceAvailable()) {
         GTEST_SKIP() << "no CUDA device";
     }
     const Scene scene = testing::smallDamBreak(20000);
+    const double time = 0.1;
+    const double spacing = buildSetup(scene, {}, nullptr).params.kernel.h / 2;
+    HostParticles dense, grid;
+    auto denseRun = testing::start(scene, Backend::Cuda, NeighbourMode::Dense);
+    auto gridRun = testing::start(scene, Backend::Cuda, NeighbourMode::Grid);
+    denseRun->advanceTo(time);
+    gridRun->advanceTo(time);
+    denseRun->download(dense);
+    gridRun->download(grid);
+    const double noise = testing::maxPositionDifference(dense, grid);
     // Auto: NCCL where each rank has a GPU of its own and weir has NCCL, else host staging.
-    std::vector<HaloTransport> transports{HaloTransport::Host, HaloTransport::Auto};
-    for (HaloTransport transport : transports) {
+    for (HaloTransport transport : {HaloTransport::Host, HaloTransport::Auto}) {
         long long steps = 0;
         const double worst =
-            divergenceAfter(Backend::Cuda, NeighbourMode::Dense, scene, 0.1, &steps, transport);
+            divergenceAfter(Backend::Cuda, NeighbourMode::Dense, scene, time, &steps, transport);
         if (world().rank() == 0) {
-            const double spacing = buildSetup(scene, {}, nullptr).params.kernel.h / 2;
-            std::printf("cuda %s, %d ranks, %lld steps: largest difference %.3g of the spacing\n",
+            std::printf("cuda %s, %d ranks, %lld steps: largest difference %.3g of the spacing "
+                        "(dense against grid on one GPU: %.3g)\n",
                         transport == HaloTransport::Auto ? "auto" : "host", world().size(), steps,
-                        worst / spacing);
-            EXPECT_LT(worst, 1e-3 * spacing) << world().size() << " ranks";
+                        worst / spacing, noise / spacing);
+            EXPECT_LT(worst, std::max(1e-3 * spacing, 3 * noise)) << world().size() << " ranks";
+            EXPECT_LT(worst, 0.05 * spacing);  // the CPU-against-GPU bound (solver_cuda_test)
         }
     }
 }
