@@ -156,6 +156,7 @@ DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend
         nccl_ = std::make_unique<NcclTransport>(comm_);
     }
     stats_.transport = nccl_ ? "nccl" : "host";
+    fitGrid();
 }
 
 void DistributedSimulation::notAPart() {
@@ -306,6 +307,7 @@ void DistributedSimulation::rebalance() {
     comm_.sumInPlace(h.counts);
     if (imbalance(countsPerRank(h, decomposition_)) > options_.rebalanceAbove) {
         decomposition_ = balancedDecomposition(h, comm_.size());
+        fitGrid();
         ++stats_.rebalances;
     }
 }
@@ -317,6 +319,14 @@ void DistributedSimulation::setDecomposition(const Decomposition& decomposition)
                                     std::to_string(comm_.size()) + " ranks");
     }
     decomposition_ = decomposition;
+    fitGrid();
+}
+
+void DistributedSimulation::fitGrid() {
+    // Ghosts reach 2h past the borders; a radius more covers a step's moves before the next
+    // exchange (particles past it would still be found, clamped into the end cells).
+    local_->restrictGrid(decomposition_.slab(comm_.rank()),
+                         haloWidth_ + double(local_->params().kernel.h));
 }
 
 FaultRecord DistributedSimulation::fault() {

@@ -80,6 +80,7 @@ class DistributedSimulation final : public Simulation {
         notAPart();
     }
     ParticleSpans appendSpace(std::size_t) override { notAPart(); }
+    void restrictGrid(const Slab&, double) override { notAPart(); }
     void* deviceStream() override { return local_->deviceStream(); }
     StepClock clock() override { return local_->clock(); }
     void setClock(const StepClock& clock) override { local_->setClock(clock); }
@@ -96,6 +97,8 @@ class DistributedSimulation final : public Simulation {
    private:
     [[noreturn]] static void notAPart();
     void exchange();
+    // The rank's neighbour table over its slab and halo only.
+    void fitGrid();
     // The ghosts' part of exchange() by NCCL: staged, counted, sent and received on the GPU.
     std::int64_t exchangeGhostsOnDevice(const Slab& share, std::int64_t* bytesSent);
     // Shares each rank's largest speed and acceleration (the dt is the same everywhere) and

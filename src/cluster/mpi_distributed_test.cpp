@@ -163,6 +163,8 @@ TEST(Distributed, OwnsItsSlabAndHoldsTheHalo) {
     EXPECT_EQ(distributed.exchangeStats().ghosts, inHalo);
     if (world().size() > 1) {
         EXPECT_GT(inHalo, 0);
+        // Its share of the particles and a neighbour table over its slab only.
+        EXPECT_LT(distributed.bytesHeld(), plain->bytesHeld());
     }
     for (std::size_t k = 0; k < mine.size(); ++k) {
         const std::size_t i = std::size_t(mine.id[k]);

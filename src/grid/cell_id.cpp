@@ -46,4 +46,15 @@ GridSpec makeGridSpec(const Vec3d& boxMin, const Vec3d& boxMax, double cellSize,
     return spec;
 }
 
+GridSpec sliceOf(const GridSpec& spec, int axis, double lo, double hi) {
+    const double origin = double(spec.origin[axis]), size = double(spec.cellSize);
+    const double cells = double(spec.dims[axis]);
+    const double first = std::clamp(std::floor((lo - origin) / size), 0.0, cells - 1);
+    const double end = std::clamp(std::ceil((hi - origin) / size), first + 1, cells);
+    GridSpec slice = spec;
+    slice.origin[axis] = Real(origin + first * size);
+    slice.dims[axis] = int(end - first);
+    return slice;
+}
+
 }  // namespace weir

@@ -56,6 +56,10 @@ struct GridSpec {
 GridSpec makeGridSpec(const Vec3d& boxMin, const Vec3d& boxMax, double cellSize,
                       int maxCellsPerAxis = kMaxCellsPerAxis);
 
+// The cells of `spec` that cover [lo, hi) along `axis` (at least one; infinite bounds reach the
+// grid's ends), in the same places: a distributed run's rank needs only its slab's cells.
+GridSpec sliceOf(const GridSpec& spec, int axis, double lo, double hi);
+
 // Throws SimulationError if the grid does not fit the paper's 10-bit-per-axis cell ids.
 void checkPaperCellIdRange(const GridSpec& spec);
 

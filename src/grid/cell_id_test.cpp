@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "core/check.h"
@@ -57,6 +58,19 @@ TEST(CellId, TooManyCellsIsAClearError) {
         EXPECT_NE(msg.find("1024"), std::string::npos) << msg;
     }
     EXPECT_THROW(makeGridSpec({0, 0, 0}, {1, 1, 1}, 0.0), SimulationError);
+}
+
+TEST(GridSpec, SliceKeepsTheCellsOfASlab) {
+    const GridSpec whole = makeGridSpec({0, 0, 0}, {1.0, 0.5, 0.5}, 0.1);
+    const GridSpec slice = sliceOf(whole, 0, 0.25, 0.61);
+    EXPECT_EQ(slice.dims[0], 5);  // cells 2..6: [0.2, 0.7)
+    EXPECT_NEAR(slice.origin.x, 0.2, 1e-6);
+    EXPECT_EQ(slice.dims[1], whole.dims[1]);
+    // A point keeps its place: its cell in the slice is its cell in the whole, shifted.
+    EXPECT_EQ(slice.cellOf(0.45f, 0.3f, 0.1f).x, whole.cellOf(0.45f, 0.3f, 0.1f).x - 2);
+    const GridSpec open = sliceOf(whole, 0, -INFINITY, INFINITY);
+    EXPECT_EQ(open.dims[0], whole.dims[0]);
+    EXPECT_EQ(sliceOf(whole, 0, 5.0, 6.0).dims[0], 1);  // past the end: the last cell
 }
 
 }  // namespace

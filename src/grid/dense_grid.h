@@ -168,6 +168,9 @@ class DenseGrid {
         });
     }
 
+    // Another box of cells of the same size (a distributed run's slab moved): buffers are kept.
+    void setSpec(const GridSpec& spec) { spec_ = spec; }
+
     // The neighbour view for positions `pos` in cell order and smoothing radius h.
     DenseGridNeighbours view(const Real4* pos, Real h) const {
         return {cellBound_.data(), pos, spec_, h * h, reach_};

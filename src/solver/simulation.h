@@ -114,6 +114,8 @@ class Simulation {
     // Room for `count` more particles at the end, in this backend's memory, to be written there
     // (by NCCL) before the next step.
     virtual ParticleSpans appendSpace(std::size_t count) = 0;
+    // Neighbour tables over the cells of `share` widened by `margin` only.
+    virtual void restrictGrid(const Slab& share, double margin) = 0;
     // The backend's CUDA stream (cudaStream_t), nullptr on the CPU.
     virtual void* deviceStream() = 0;
     virtual StepClock clock() = 0;

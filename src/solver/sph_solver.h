@@ -28,7 +28,8 @@ class SphSolver final : public Simulation {
         : mode_(mode),
           params_(setup.params),
           sparse_(mode == NeighbourMode::Grid ? setup.grid : GridSpec{}),
-          dense_(denseGridSpec(setup.grid, denseReach(setup)), denseReach(setup)) {
+          dense_(denseGridSpec(setup.grid, denseReach(setup)), denseReach(setup)),
+          denseFull_(denseGridSpec(setup.grid, denseReach(setup))) {
         if (setup.particles.size() == 0 && !setup.seeds.empty()) {
             seed(setup.seeds, setup.share);
         } else {
@@ -618,6 +619,15 @@ class SphSolver final : public Simulation {
         }
     }
 
+    // The dense table over the cells of `share` widened by `margin` only (particles outside are
+    // clamped into its end cells, still found), so a rank's table grows with its share, not
+    // with the whole domain. The paper's grid keeps the whole domain.
+    void restrictGrid(const Slab& share, double margin) override {
+        if (mode_ == NeighbourMode::Dense) {
+            dense_.setSpec(sliceOf(denseFull_, share.axis, share.lo - margin, share.hi + margin));
+        }
+    }
+
     StepClock clock() override { return exec_.readOne(clock_, 0); }
     void setClock(const StepClock& clock) override { exec_.writeOne(clock_, 0, clock); }
     void stepOnce() override { step(); }
@@ -703,6 +713,7 @@ class SphSolver final : public Simulation {
     SphParams params_;
     NeighbourGrid<Exec> sparse_;
     DenseGrid<Exec> dense_;
+    GridSpec denseFull_;  // the dense table's cells over the whole container
     Index n_ = 0;
     long long calls_ = 0;     // step() calls, no-op steps included (graph parity)
     double typicalStep_ = 0;  // mean dt of the last batch, to size the next
