@@ -98,7 +98,7 @@ TEST(ParticleRouting, GhostsGoToEveryRankWithinTheHalo) {
     ASSERT_EQ(out[2].size(), 1u);
     EXPECT_EQ(out[3].size(), 0u);
     EXPECT_EQ(out[1].id[0], 0);
-    EXPECT_EQ(out[1].pos[0].w, Real(1));  // marked a ghost
+    EXPECT_EQ(out[1].pos[0].w, kArrivingGhostMark);  // marked a ghost
     EXPECT_EQ(out[1].pos[0].x, Real(0.9));
 }
 

@@ -222,7 +222,7 @@ std::int64_t DistributedSimulation::exchangeGhostsOnDevice(const Slab& share,
         }
     }
     std::vector<std::int64_t> sendCounts;
-    const ParticleSpans staged = local_->stageWindows(windows, sendCounts);
+    const ParticleSpans staged = local_->stageWindows(share, windows, sendCounts);
     std::vector<Bytes> told(std::size_t(comm_.size()));
     for (std::size_t k = 0; k < toRanks.size(); ++k) {
         Bytes& message = told[std::size_t(toRanks[k])];

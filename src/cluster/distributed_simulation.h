@@ -76,7 +76,8 @@ class DistributedSimulation final : public Simulation {
     void append(const ParticleBatch&) override { notAPart(); }
     void downloadOwned(ParticleBatch& out) override { local_->downloadOwned(out); }
     void histogram(int, double, double, std::vector<Index>&) override { notAPart(); }
-    ParticleSpans stageWindows(const std::vector<Slab>&, std::vector<std::int64_t>&) override {
+    ParticleSpans stageWindows(const Slab&, const std::vector<Slab>&,
+                               std::vector<std::int64_t>&) override {
         notAPart();
     }
     ParticleSpans appendSpace(std::size_t) override { notAPart(); }

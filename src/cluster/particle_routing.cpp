@@ -2,6 +2,8 @@
 // velocities and ids as arrays.
 #include "cluster/particle_routing.h"
 
+#include "physics/stages.h"
+
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -29,7 +31,7 @@ std::vector<ParticleBatch> routeGhosts(const ParticleBatch& nearBorders,
         decomposition.forEachRankNear(c, width, self, [&](int r) {
             ParticleBatch& to = out[std::size_t(r)];
             to.push(nearBorders, k);
-            to.pos.back().w = 1;  // a ghost there
+            to.pos.back().w = kArrivingGhostMark;  // a ghost there
         });
     }
     return out;

@@ -126,28 +126,38 @@ class DenseGrid {
     // now and its index in cell order: the caller moves its data there in the same pass.
     template <class Place>
     void build(Exec& exec, const Real4* pos, Index n, Place place) {
+        build(exec, pos, n, place, [] WEIR_HD(Index) { return false; });
+    }
+
+    // The same, leaving out the particles for which discard(i) holds: they go to a cell past the
+    // last one and are not placed, so the kept ones fill [0, keptCount()). A distributed run
+    // drops last step's ghosts and the particles that left its slab this way, in the pass that
+    // moves every particle anyway.
+    template <class Place, class Discard>
+    void build(Exec& exec, const Real4* pos, Index n, Place place, Discard discard) {
         // The particle count does not change between steps, nor does the grid.
         keys_.resize(std::size_t(n));
         tickets_.resize(std::size_t(n));
         slotParticle_.resize(std::size_t(n));
         const std::uint64_t cells = totalCells(spec_);
-        cellBound_.resize(std::size_t(cells + 1));
+        cellBound_.resize(std::size_t(cells + 2));  // + the discarded particles' cell
         const GridSpec spec = spec_;
         const int nx = spec.dims[0], nz = spec.dims[2];
+        const CellKey discarded = CellKey(cells);
         CellKey* keys = keys_.data();
         Index* ticket = tickets_.data();
         Index* bound = cellBound_.data();
         Index* slotParticle = slotParticle_.data();
         // 1. Count: bound[c + 1] = particles in cell c; each particle's ticket is its arrival.
-        exec.forEach(Index(cells + 1), [=] WEIR_HD(Index c) { bound[c] = 0; });
+        exec.forEach(Index(cells + 2), [=] WEIR_HD(Index c) { bound[c] = 0; });
         exec.forEach(n, [=] WEIR_HD(Index i) {
             const CellCoord c = spec.cellOf(pos[i].x, pos[i].y, pos[i].z);
-            const CellKey key = denseCellIndex(c.x, c.y, c.z, nx, nz);
+            const CellKey key = discard(i) ? discarded : denseCellIndex(c.x, c.y, c.z, nx, nz);
             keys[i] = key;
             ticket[i] = atomicFetchAdd(&bound[key + 1], Index(1));
         });
         // 2. The prefix sum of the counts: bound[c] = first particle of cell c.
-        exec.inclusiveScan(bound, bound, Index(cells + 1));
+        exec.inclusiveScan(bound, bound, Index(cells + 2));
         // 3. Place by ticket, then order each cell by current index (the order of a stable sort).
         // A cell of more than kMaxRankedCell particles (a pile-up in a broken run) keeps its
         // ticket order rather than cost a quadratic ranking.
@@ -155,6 +165,9 @@ class DenseGrid {
         exec.forEach(n, [=] WEIR_HD(Index slot) {
             const Index i = slotParticle[slot];
             const CellKey key = keys[i];
+            if (key == discarded) {
+                return;
+            }
             const Index first = bound[key], end = bound[key + 1];
             if (end - first > kMaxRankedCell) {
                 place(i, slot);
@@ -166,6 +179,11 @@ class DenseGrid {
             }
             place(i, first + rank);
         });
+    }
+
+    // After build(): how many particles were kept (read back from the device).
+    Index keptCount(Exec& exec) const {
+        return exec.readOne(cellBound_, std::size_t(totalCells(spec_)));
     }
 
     // Another box of cells of the same size (a distributed run's slab moved): buffers are kept.

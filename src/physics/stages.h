@@ -48,6 +48,10 @@ struct ObstacleView {
 // A ghost is a copy of another rank's particle near this rank's border (distributed runs,
 // cluster/): it lends its density and velocity to the owned particles' sums but is neither
 // moved, nor checked, nor counted in the time step here; its owner does that.
+// pos.w marks them: 1 a ghost of this step, 2 one just arrived for the next step (the grid build
+// turns it into 1 and drops the 1s of the step before).
+constexpr Real kGhostMark = 1;
+constexpr Real kArrivingGhostMark = 2;
 WEIR_HD inline bool isGhost(const Real4& pos) { return pos.w != Real(0); }
 
 // Why a run had to stop. The first particle to fail records itself; the host reads it back.

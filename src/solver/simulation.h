@@ -96,7 +96,8 @@ class Simulation {
     virtual double time() const = 0;
 
     // ---- One rank's part of a distributed run (cluster/distributed_simulation.h) ----
-    // Drops ghost copies and moves the owned particles outside `share` into `leaving`.
+    // Copies the owned particles outside `share` into `leaving` and drops them and the ghosts
+    // (at once, or, with the dense table, in the next grid build).
     virtual void takeLeavers(const Slab& share, ParticleBatch& leaving) = 0;
     // Appends copies of the owned particles within `width` of the borders of `share` to `out`.
     virtual void copyBorderParticles(const Slab& share, double width, ParticleBatch& out) = 0;
@@ -106,10 +107,10 @@ class Simulation {
     virtual void downloadOwned(ParticleBatch& out) = 0;
     // counts[b] += owned particles in bin b of width binWidth from lo along `axis` (clamped).
     virtual void histogram(int axis, double lo, double binWidth, std::vector<Index>& counts) = 0;
-    // Stages ghost copies (position w = 1) of the owned particles inside each window, window
+    // Stages ghost copies (arriving: position w = 2) of the owned particles of `share` inside each window, window
     // after window, in this backend's memory (device memory on CUDA, for NCCL to send);
     // counts[k] = particles of window k.
-    virtual ParticleSpans stageWindows(const std::vector<Slab>& windows,
+    virtual ParticleSpans stageWindows(const Slab& share, const std::vector<Slab>& windows,
                                        std::vector<std::int64_t>& counts) = 0;
     // Room for `count` more particles at the end, in this backend's memory, to be written there
     // (by NCCL) before the next step.

@@ -245,14 +245,30 @@ class SphSolver final : public Simulation {
             const Index* id = id_.data();
             Real4 *newPos = sortedPos_.data(), *newVel = sortedVel_.data();
             Index* newId = sortedId_.data();
-            dense_.build(exec_, pos, n_, [=] WEIR_HD(Index from, Index to) {
-                newPos[to] = pos[from];
-                newVel[to] = vel[from];
-                newId[to] = id[from];
-            });
+            // A distributed run's rank also drops last step's ghosts and the particles that
+            // left its slab (handed over already), and arriving ghosts become this step's.
+            const bool distributed = distributed_;
+            const Slab share = share_;
+            dense_.build(
+                exec_, pos, n_,
+                [=] WEIR_HD(Index from, Index to) {
+                    Real4 p = pos[from];
+                    p.w = p.w == kArrivingGhostMark ? kGhostMark : p.w;
+                    newPos[to] = p;
+                    newVel[to] = vel[from];
+                    newId[to] = id[from];
+                },
+                [=] WEIR_HD(Index i) {
+                    return distributed && (pos[i].w == kGhostMark ||
+                                           (pos[i].w == Real(0) &&
+                                            !share.contains(share.coordinate(pos[i]))));
+                });
             pos_.swap(sortedPos_);
             vel_.swap(sortedVel_);
             id_.swap(sortedId_);
+            if (distributed) {
+                n_ = dense_.keptCount(exec_);
+            }
         }
         exec_.stageEnd("grid");
     }
@@ -496,6 +512,20 @@ class SphSolver final : public Simulation {
 
     // Drops the ghost copies and takes out the owned particles outside `share` (into `leaving`).
     void takeLeavers(const Slab& share, ParticleBatch& leaving) override {
+        if (mode_ == NeighbourMode::Dense) {
+            // The next grid build drops the ghosts and leavers: only copy the leavers out.
+            distributed_ = true;
+            share_ = share;
+            const Index n = n_;
+            flags_.resize(std::size_t(n));
+            Index* leave = flags_.data();
+            const Real4* pos = pos_.data();
+            exec_.forEach(n, [=] WEIR_HD(Index i) {
+                leave[i] = !isGhost(pos[i]) && !share.contains(share.coordinate(pos[i])) ? 1 : 0;
+            });
+            gather(leave, leaving);
+            return;
+        }
         const Index n = n_;
         flags_.resize(std::size_t(n) * 2);
         Index *stay = flags_.data(), *leave = flags_.data() + n;
@@ -522,12 +552,13 @@ class SphSolver final : public Simulation {
         Index* near = flags_.data();
         const Real4* pos = pos_.data();
         exec_.forEach(n, [=] WEIR_HD(Index i) {
-            near[i] = !isGhost(pos[i]) && share.nearBorder(share.coordinate(pos[i]), width) ? 1 : 0;
+            const Real c = share.coordinate(pos[i]);
+            near[i] = !isGhost(pos[i]) && share.contains(c) && share.nearBorder(c, width) ? 1 : 0;
         });
         gather(near, out);
     }
 
-    // Appends particles: arrivals (owned) or ghost copies (pos.w = 1).
+    // Appends particles: arrivals (owned) or ghost copies (pos.w = kArrivingGhostMark).
     void append(const ParticleBatch& batch) override {
         const Index m = Index(batch.size());
         if (m == 0) {
@@ -579,7 +610,7 @@ class SphSolver final : public Simulation {
         }
     }
 
-    ParticleSpans stageWindows(const std::vector<Slab>& windows,
+    ParticleSpans stageWindows(const Slab& share, const std::vector<Slab>& windows,
                                std::vector<std::int64_t>& counts) override {
         counts.assign(windows.size(), 0);
         Index staged = 0;
@@ -590,11 +621,12 @@ class SphSolver final : public Simulation {
             const Real4* pos = pos_.data();
             const Slab window = windows[k];
             exec_.forEach(n, [=] WEIR_HD(Index i) {
-                inside[i] = !isGhost(pos[i]) && window.contains(window.coordinate(pos[i])) ? 1 : 0;
+                const Real c = window.coordinate(pos[i]);
+                inside[i] = !isGhost(pos[i]) && share.contains(c) && window.contains(c) ? 1 : 0;
             });
             const Index count = compactInto(inside, stagePos_, stageVel_, stageId_, staged);
             Real4* marked = stagePos_.data() + staged;
-            exec_.forEach(count, [=] WEIR_HD(Index i) { marked[i].w = 1; });
+            exec_.forEach(count, [=] WEIR_HD(Index i) { marked[i].w = kArrivingGhostMark; });
             counts[k] = count;
             staged += count;
         }
@@ -714,6 +746,8 @@ class SphSolver final : public Simulation {
     NeighbourGrid<Exec> sparse_;
     DenseGrid<Exec> dense_;
     GridSpec denseFull_;  // the dense table's cells over the whole container
+    bool distributed_ = false;  // one rank's part: the dense build drops ghosts and leavers
+    Slab share_;                // that rank's slab
     Index n_ = 0;
     long long calls_ = 0;     // step() calls, no-op steps included (graph parity)
     double typicalStep_ = 0;  // mean dt of the last batch, to size the next
