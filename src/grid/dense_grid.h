@@ -151,8 +151,12 @@ class DenseGrid {
         // 1. Count: bound[c + 1] = particles in cell c; each particle's ticket is its arrival.
         exec.forEach(Index(cells + 2), [=] WEIR_HD(Index c) { bound[c] = 0; });
         exec.forEach(n, [=] WEIR_HD(Index i) {
+            if (discard(i)) {
+                keys[i] = discarded;  // not counted: no ticket, no place (and no atomic on one
+                return;               // shared counter by every discarded particle)
+            }
             const CellCoord c = spec.cellOf(pos[i].x, pos[i].y, pos[i].z);
-            const CellKey key = discard(i) ? discarded : denseCellIndex(c.x, c.y, c.z, nx, nz);
+            const CellKey key = denseCellIndex(c.x, c.y, c.z, nx, nz);
             keys[i] = key;
             ticket[i] = atomicFetchAdd(&bound[key + 1], Index(1));
         });
@@ -161,13 +165,17 @@ class DenseGrid {
         // 3. Place by ticket, then order each cell by current index (the order of a stable sort).
         // A cell of more than kMaxRankedCell particles (a pile-up in a broken run) keeps its
         // ticket order rather than cost a quadratic ranking.
-        exec.forEach(n, [=] WEIR_HD(Index i) { slotParticle[bound[keys[i]] + ticket[i]] = i; });
+        exec.forEach(n, [=] WEIR_HD(Index i) {
+            if (keys[i] != discarded) {
+                slotParticle[bound[keys[i]] + ticket[i]] = i;
+            }
+        });
         exec.forEach(n, [=] WEIR_HD(Index slot) {
+            if (slot >= bound[discarded]) {
+                return;  // past the kept particles
+            }
             const Index i = slotParticle[slot];
             const CellKey key = keys[i];
-            if (key == discarded) {
-                return;
-            }
             const Index first = bound[key], end = bound[key + 1];
             if (end - first > kMaxRankedCell) {
                 place(i, slot);

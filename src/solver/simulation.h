@@ -112,8 +112,8 @@ class Simulation {
     // counts[k] = particles of window k.
     virtual ParticleSpans stageWindows(const Slab& share, const std::vector<Slab>& windows,
                                        std::vector<std::int64_t>& counts) = 0;
-    // Room for `count` more particles at the end, in this backend's memory, to be written there
-    // (by NCCL) before the next step.
+    // Room for `count` more ghost copies at the end, in this backend's memory, to be written
+    // there (by NCCL, arriving: position w = 2) before the next step.
     virtual ParticleSpans appendSpace(std::size_t count) = 0;
     // Neighbour tables over the cells of `share` widened by `margin` only.
     virtual void restrictGrid(const Slab& share, double margin) = 0;

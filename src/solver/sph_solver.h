@@ -267,7 +267,22 @@ class SphSolver final : public Simulation {
             vel_.swap(sortedVel_);
             id_.swap(sortedId_);
             if (distributed) {
-                n_ = dense_.keptCount(exec_);
+                // Known on the host (no round trip that would stall the step's launches).
+                n_ -= discardPending_;
+                heldGhosts_ = arrivingGhosts_;
+                arrivingGhosts_ = 0;
+                discardPending_ = 0;
+                // Checked where reading the count back costs nothing (CPU) or in debug builds.
+#ifdef NDEBUG
+                constexpr bool check = !Exec::isDevice;
+#else
+                constexpr bool check = true;
+#endif
+                if constexpr (check) {
+                    const Index kept = dense_.keptCount(exec_);
+                    WEIR_REQUIRE(n_ == kept, "the grid build kept " << kept << " particles, not "
+                                                                    << n_);
+                }
             }
         }
         exec_.stageEnd("grid");
@@ -523,7 +538,7 @@ class SphSolver final : public Simulation {
             exec_.forEach(n, [=] WEIR_HD(Index i) {
                 leave[i] = !isGhost(pos[i]) && !share.contains(share.coordinate(pos[i])) ? 1 : 0;
             });
-            gather(leave, leaving);
+            discardPending_ = heldGhosts_ + gather(leave, leaving);
             return;
         }
         const Index n = n_;
@@ -571,6 +586,9 @@ class SphSolver final : public Simulation {
         exec_.uploadAt(pos_, std::size_t(n_), batch.pos.data(), std::size_t(m));
         exec_.uploadAt(vel_, std::size_t(n_), batch.vel.data(), std::size_t(m));
         exec_.uploadAt(id_, std::size_t(n_), batch.id.data(), std::size_t(m));
+        for (const Real4& p : batch.pos) {
+            arrivingGhosts_ += isGhost(p) ? 1 : 0;
+        }
         n_ = Index(total);
         fitScratch();
     }
@@ -635,6 +653,7 @@ class SphSolver final : public Simulation {
 
     ParticleSpans appendSpace(std::size_t count) override {
         const std::size_t at = std::size_t(n_), total = at + count;
+        arrivingGhosts_ += Index(count);
         growKeeping(pos_, total);
         growKeeping(vel_, total);
         growKeeping(id_, total);
@@ -748,6 +767,9 @@ class SphSolver final : public Simulation {
     GridSpec denseFull_;  // the dense table's cells over the whole container
     bool distributed_ = false;  // one rank's part: the dense build drops ghosts and leavers
     Slab share_;                // that rank's slab
+    Index heldGhosts_ = 0;      // ghosts of this step (mark 1)
+    Index arrivingGhosts_ = 0;  // ghosts appended for the next step (mark 2)
+    Index discardPending_ = 0;  // particles the next dense build drops: ghosts and leavers
     Index n_ = 0;
     long long calls_ = 0;     // step() calls, no-op steps included (graph parity)
     double typicalStep_ = 0;  // mean dt of the last batch, to size the next
