@@ -74,8 +74,10 @@ WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Nei
     Real sum = 0;
     nb.forEachCandidate(
         i, [&](Index j) { sum += poly6(params.kernel, lengthSquared(xi - pv.position(j))); });
-    const Real walls = params.walls == WallKind::Simple ? wallDensity(params, xi)
-                                                        : boundaryDensity(pv.boundary, params.kernel, xi);
+    const Real walls =
+        params.walls == WallKind::Simple
+            ? wallDensity(params.wallWeight, params.boxMin, params.boxMax, params.restDensity, xi)
+            : boundaryDensity(pv.boundary, params.kernel, xi);
     pv.vel[i].w = params.mass * sum + walls;
 }
 
@@ -116,7 +118,8 @@ WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighb
         }
     });
     const Vec3 walls = params.walls == WallKind::Simple
-                           ? wallAcceleration(params, xi, rhoi, pi)
+                           ? wallAcceleration(params.wallWeight, params.boxMin, params.boxMax, xi,
+                                              rhoi, pi)
                            : boundaryAcceleration(pv.boundary, params.kernel, xi, vi.xyz(), rhoi,
                                                   pi, params.wallViscosity, params.invRestDensity);
     return force / rhoi + params.gravity + walls;

@@ -1,5 +1,5 @@
-// The simple walls' analytic share of the kernel beyond a plane agrees with the kernels summed
-// over a fine lattice, and a particle of a lattice against a wall reads rest density with it.
+// The simple walls' wall weight: its table tends to the kernel's integral beyond a plane as the
+// lattice gets finer, and a lattice seeded against the walls reads rest density with it.
 #include "physics/wall_weight.h"
 
 #include <gtest/gtest.h>
@@ -9,92 +9,109 @@
 namespace weir {
 namespace {
 
-// Sums f(point) over a fine lattice of the half-space beyond a plane at distance q h (h = 1).
-template <class F>
-double sumBeyondPlane(double q, F f) {
-    const int n = 80;
-    const double step = 2.0 / n, cell = step * step * step;
+// Continuum references (h = 1): poly6's mass beyond a plane at distance q, 315/256 (128/315 -
+// P(q)) with P(q) the integral of (1 - t^2)^4 from 0 to q; and the spiky gradient's normal
+// component integrated over that half-space, by the divergence theorem the spiky kernel
+// integrated over the plane, 30 (w^4 / 4 - w^5 / 5) with w = 1 - q.
+double poly6BeyondPlane(double q) {
+    const double q2 = q * q;
+    const double p = q * (1 - q2 * (4.0 / 3 - q2 * (6.0 / 5 - q2 * (4.0 / 7 - q2 / 9))));
+    return q >= 1 ? 0 : 315.0 / 256 * (128.0 / 315 - p);
+}
+double spikyGradientBeyondPlane(double q) {
+    const double w = 1 - q;
+    return q >= 1 ? 0 : 30 * w * w * w * w * (0.25 - 0.2 * w);
+}
+
+// poly6 summed over the full lattice (spacing 1, radius ratio), as the set-up calibrates the mass.
+double fullLatticeSum(double ratio) {
+    const KernelCoefficients k = KernelCoefficients::forRadius(ratio);
+    const int reach = int(std::ceil(ratio));
     double sum = 0;
-    for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) {
-            for (int k = 0; k < n; ++k) {
-                const Vec3 r(Real(-1 + (i + 0.5) * step), Real(-1 + (j + 0.5) * step),
-                             Real(-1 + (k + 0.5) * step));
-                if (r.x < -q) {  // the plane x = -q, the particle at the origin
-                    sum += f(r) * cell;
-                }
+    for (int i = -reach; i <= reach; ++i) {
+        for (int j = -reach; j <= reach; ++j) {
+            for (int l = -reach; l <= reach; ++l) {
+                sum += double(poly6(k, Real(i * i + j * j + l * l)));
             }
         }
     }
     return sum;
 }
 
-TEST(WallWeight, Poly6BeyondPlaneMatchesTheKernelSummedOverTheHalfSpace) {
-    const KernelCoefficients k = KernelCoefficients::forRadius(1.0);
-    EXPECT_NEAR(poly6BeyondPlane(0), 0.5, 1e-6);
-    EXPECT_EQ(poly6BeyondPlane(1), 0);
-    EXPECT_EQ(poly6BeyondPlane(1.5), 0);
+TEST(WallWeight, TableTendsToTheKernelIntegralBeyondThePlane) {
+    const double h = 1, d = h / 8, rho0 = 1000, mass = rho0 * d * d * d / fullLatticeSum(8);
+    const WallWeightTable t = wallWeightTable(h, d, mass, rho0);
+    ASSERT_GT(t.samples, 1);
     for (double q : {0.0, 0.1, 0.25, 0.5, 0.75}) {
-        const double sum =
-            sumBeyondPlane(q, [&](const Vec3& r) { return double(poly6(k, lengthSquared(r))); });
-        EXPECT_NEAR(poly6BeyondPlane(Real(q)), sum, 2e-3) << "q = " << q;
+        Real share, push;
+        wallSample(t, Real(q * h), share, push);
+        EXPECT_NEAR(share, poly6BeyondPlane(q), 0.01) << "q = " << q;
+        // The spiky gradient peaks at r = 0, so the lattice is a coarser quadrature of it.
+        EXPECT_NEAR(push / (rho0 / h), spikyGradientBeyondPlane(q), 0.03) << "q = " << q;
     }
+    Real share, push;
+    wallSample(t, Real(h), share, push);
+    EXPECT_EQ(share, 0);
+    EXPECT_EQ(push, 0);
 }
 
-TEST(WallWeight, SpikyGradientBeyondPlaneMatchesTheGradientSummedOverTheHalfSpace) {
-    const KernelCoefficients k = KernelCoefficients::forRadius(1.0);
-    EXPECT_NEAR(spikyGradientBeyondPlane(0), 1.5, 1e-6);
-    EXPECT_EQ(spikyGradientBeyondPlane(1), 0);
-    for (double q : {0.1, 0.25, 0.5, 0.75}) {
-        // The gradient at the particle (origin) of W(0 - r), along the plane's normal: grad W is
-        // g (x_i - x_b), and x_i - x_b = -r.
-        const double sum = sumBeyondPlane(q, [&](const Vec3& r) {
-            const double len = std::sqrt(double(lengthSquared(r)));
-            return len < 1 ? double(spikyGradientFactor(k, Real(len))) * -double(r.x) : 0.0;
-        });
-        EXPECT_NEAR(spikyGradientBeyondPlane(Real(q)), -sum, 0.02) << "q = " << q;
-    }
-}
-
-// A particle of a cubic lattice whose first layer sits d/2 from the wall reads rest density
-// once the wall adds its share, at the ratios the sweep uses: within 3% from h = 2d; at 1.5 d the
-// first layer reads 5.8% high (the lattice is too coarse a quadrature of so narrow a kernel).
-TEST(WallWeight, LatticeAgainstTheWallReadsRestDensity) {
+// A particle of a cubic lattice seeded against the walls (first layer d/2 from each) reads rest
+// density: exactly at a single wall, where the table is the lattice beyond it; at edges and
+// corners, where the planes combine as if the kernel were separable, up to 2% light (a light
+// particle gets no pressure and is not pushed; a heavy one would be) and never heavy.
+TEST(WallWeight, LatticeAgainstTheWallsReadsRestDensity) {
     for (double ratio : {1.5, 2.0, 3.0}) {
-        const double d = 1.0, h = ratio * d;
-        SphParams p;
-        p.kernel = KernelCoefficients::forRadius(h);
-        p.restDensity = 1000;
-        p.boxMin = Vec3(0, -100, -100);
-        p.boxMax = Vec3(100, 100, 100);
+        const double d = 1.0, h = ratio * d, rho0 = 1000;
+        const KernelCoefficients k = KernelCoefficients::forRadius(h);
+        const double mass = rho0 / fullLatticeSum(ratio);
+        const WallWeightTable t = wallWeightTable(h, d, mass, rho0);
+        const Vec3 boxMin(0, 0, 0), boxMax(100, 100, 100);
         const int reach = int(std::ceil(ratio)) + 1;
-        double full = 0;
-        for (int i = -reach; i <= reach; ++i) {
-            for (int j = -reach; j <= reach; ++j) {
-                for (int l = -reach; l <= reach; ++l) {
-                    full += double(poly6(p.kernel, Real(i * i + j * j + l * l)));
-                }
-            }
-        }
-        const double mass = p.restDensity / full;  // the lattice at rest density, as in setup
-        for (int layer = 0; layer < reach; ++layer) {
-            const Vec3 x(Real((layer + 0.5) * d), 0, 0);
-            double rho = 0;
-            for (int i = -reach; i <= reach; ++i) {
-                if ((layer + 0.5 + i) * d < 0) {
-                    continue;  // behind the wall
-                }
-                for (int j = -reach; j <= reach; ++j) {
-                    for (int l = -reach; l <= reach; ++l) {
-                        rho += mass * double(poly6(p.kernel, Real(i * i + j * j + l * l)));
+        for (int walls = 1; walls <= 3; ++walls) {
+            for (int layer = 0; layer < reach; ++layer) {
+                // At `layer` from the x wall, and on the first layer of the others in play.
+                const double at[3] = {layer + 0.5, walls > 1 ? 0.5 : 50.5, walls > 2 ? 0.5 : 50.5};
+                double rho = 0;
+                for (int i = -reach; i <= reach; ++i) {
+                    for (int j = -reach; j <= reach; ++j) {
+                        for (int l = -reach; l <= reach; ++l) {
+                            if (at[0] + i < 0 || at[1] + j < 0 || at[2] + l < 0) {
+                                continue;  // behind a wall
+                            }
+                            rho += mass * double(poly6(k, Real(i * i + j * j + l * l)));
+                        }
                     }
                 }
+                rho += double(
+                    wallDensity(t, boxMin, boxMax, Real(rho0), Vec3(at[0], at[1], at[2])));
+                SCOPED_TRACE("h/d = " + std::to_string(ratio) + ", " + std::to_string(walls) +
+                             " wall(s), layer " + std::to_string(layer));
+                if (walls == 1) {
+                    EXPECT_NEAR(rho / rho0, 1.0, 1e-4);
+                } else {
+                    EXPECT_LT(rho / rho0, 1.0 + 1e-4);
+                    EXPECT_GT(rho / rho0, 0.975);
+                }
             }
-            rho += double(wallDensity(p, x));
-            EXPECT_NEAR(rho / p.restDensity, 1.0, ratio < 2 ? 0.06 : 0.03)
-                << "h/d = " << ratio << ", layer " << layer;
         }
     }
+}
+
+// The push points into the fluid, grows towards the wall, and is off without pressure.
+TEST(WallWeight, PushesAwayFromTheWallByTheParticlesOwnPressure) {
+    const double h = 2, d = 1, rho0 = 1000;
+    const WallWeightTable t = wallWeightTable(h, d, rho0 / fullLatticeSum(2), rho0);
+    const Vec3 boxMin(0, 0, 0), boxMax(100, 100, 100);
+    const Vec3 nearFloor = wallAcceleration(t, boxMin, boxMax, Vec3(50, 0.5, 50), 1000, 500);
+    const Vec3 atFloor = wallAcceleration(t, boxMin, boxMax, Vec3(50, 0.1, 50), 1000, 500);
+    EXPECT_GT(nearFloor.y, 0);
+    EXPECT_GT(atFloor.y, nearFloor.y);
+    EXPECT_EQ(nearFloor.x, 0);
+    EXPECT_EQ(nearFloor.z, 0);
+    const Vec3 nearCeiling = wallAcceleration(t, boxMin, boxMax, Vec3(50, 99.5, 50), 1000, 500);
+    EXPECT_FLOAT_EQ(nearCeiling.y, -nearFloor.y);
+    EXPECT_EQ(lengthSquared(wallAcceleration(t, boxMin, boxMax, Vec3(50, 0.5, 50), 990, 0)), 0);
+    EXPECT_EQ(lengthSquared(wallAcceleration(t, boxMin, boxMax, Vec3(50, 50, 50), 1000, 500)), 0);
 }
 
 }  // namespace
