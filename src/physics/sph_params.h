@@ -5,6 +5,7 @@
 #include "core/config.h"
 #include "core/vec3.h"
 #include "physics/kernels.h"
+#include "physics/wall_weight.h"
 
 namespace weir {
 
@@ -44,6 +45,7 @@ struct SphParams {
     Real restitution = 0;  // normal speed kept after a wall contact
     Real friction = 0;     // share of tangential speed removed on contact
     WallKind walls = WallKind::Simple;
+    WallWeightTable wallWeight;  // the simple walls' planes (physics/wall_weight.h); empty: bare
     Real wallViscosity = 0;  // mu against boundary particles, Pa s (0: free slip)
     Real maxSpeed = 0;       // blow-up bound, m/s
 };

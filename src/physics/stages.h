@@ -11,6 +11,7 @@
 #include "physics/kernels.h"
 #include "physics/sph_params.h"
 #include "physics/time_step.h"
+#include "physics/wall_weight.h"
 
 namespace weir {
 
@@ -82,7 +83,11 @@ WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Nei
     Real sum = 0;
     nb.forEachCandidate(
         i, [&](Index j) { sum += poly6(params.kernel, lengthSquared(xi - pv.position(j))); });
-    pv.vel[i].w = params.mass * sum + boundaryDensity(pv.boundary, params.kernel, xi);
+    const Real walls =
+        params.walls == WallKind::Simple
+            ? wallDensity(params.wallWeight, params.boxMin, params.boxMax, params.restDensity, xi)
+            : boundaryDensity(pv.boundary, params.kernel, xi);
+    pv.vel[i].w = params.mass * sum + walls;
 }
 
 // The pressure (spiky gradient) and viscous (eq. 5, its Laplacian) force density on i from j,
@@ -121,9 +126,12 @@ WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighb
                                rhoi, vj.w, vi.xyz(), vj.xyz());
         }
     });
-    return force / rhoi + params.gravity +
-           boundaryAcceleration(pv.boundary, params.kernel, xi, vi.xyz(), rhoi, pi,
-                                params.wallViscosity, params.invRestDensity);
+    const Vec3 walls = params.walls == WallKind::Simple
+                           ? wallAcceleration(params.wallWeight, params.boxMin, params.boxMax, xi,
+                                              rhoi, pi)
+                           : boundaryAcceleration(pv.boundary, params.kernel, xi, vi.xyz(), rhoi,
+                                                  pi, params.wallViscosity, params.invRestDensity);
+    return force / rhoi + params.gravity + walls;
 }
 
 template <class Neighbours>

@@ -354,8 +354,14 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             (scene.wallFriction > 0 ? "; friction mu = " + fmt(scene.wallFriction * viscosity)
                                     : "; free slip (walls.friction 0)"));
     } else {
+        p.wallWeight = wallWeightTable(h, d, mass, scene.restDensity);
         say("walls: the paper's simple collision response (restitution " +
-            fmt(scene.wallRestitution) + ", friction " + fmt(scene.wallFriction) + ")");
+            fmt(scene.wallRestitution) + ", friction " + fmt(scene.wallFriction) +
+            "), and wall weight (Harada et al. 2007): each container plane stands for the fluid "
+            "lattice beyond it, adds its density (" +
+            fmt(double(p.wallWeight.share[0])) +
+            " rho0 at the plane) and pushes by the particle's own pressure; obstacles get the "
+            "collision response only");
     }
     say(std::to_string(setup.particleCount()) + " particles, grid " +
         std::to_string(setup.grid.dims[0]) + " x " + std::to_string(setup.grid.dims[1]) + " x " +

@@ -21,13 +21,16 @@
 namespace weir {
 namespace {
 
-// Bounds: c = 10 x the expected speed keeps compression near 1% (Monaghan 1994); splashes and
-// impacts spike single particles higher, so the per-frame maximum is allowed 10%, the mean 1%.
-// The paper's simple collision response does not hold pressure: it puts particles back on the
-// wall, where the next ones pile onto them, so single particles there reach 15% (measured);
-// for it the maximum is allowed 20%.
-constexpr double kMaxDeviation = 0.10;
-constexpr double kMaxDeviationSimpleWalls = 0.20;
+// Bounds: c = 10 x the expected speed U keeps the mean compression near 1% (Monaghan 1994: it
+// goes as (u / c)^2). An impact is another matter: a front stopped from speed u (against a wall,
+// or against an equal front: by symmetry the same thing) compresses by Joukowsky's water hammer,
+// p = rho0 c u, i.e. u / c, linear in the Mach number. A dam-break front runs at up to Ritter's
+// 2 sqrt(g H) = sqrt(2) U, so single particles at the impact reach up to sqrt(2) / 10 = 14%, and
+// the sharper the impact is resolved, the closer they get (double_dam_break with boundary
+// particles at h = 2d: 7.5% at 648 particles, 8.6% at 30k with fronts at 3.1 m/s, 12.0% at 100k
+// on a GPU; u / c = 9.2% at 30k). The per-frame maximum is allowed 15%, the mean 1%. The simple
+// walls hold pressure too (physics/wall_weight.h), so the same bounds hold for both models.
+constexpr double kMaxDeviation = 0.15;
 constexpr double kMeanDeviation = 0.01;
 
 using SweepCase = std::tuple<std::string, std::int64_t, double, bool>;  // scene, n, ratio, walls
@@ -67,7 +70,7 @@ TEST_P(StabilitySweep, RunsToTheEndStable) {
               << sim->stepCount() << " steps to t=" << sim->time() << " s, worst " << worst.text()
               << ", " << seconds << " s\n";
     EXPECT_EQ(sim->time(), double(report.frames) * report.frameInterval);
-    EXPECT_LE(worst.max, boundaryParticles ? kMaxDeviation : kMaxDeviationSimpleWalls);
+    EXPECT_LE(worst.max, kMaxDeviation);
     EXPECT_LE(worst.mean, kMeanDeviation);
 }
 

@@ -139,6 +139,24 @@ TEST_P(RestState, FluidAtRestInABoxStaysAtRest) {
     EXPECT_LT(moves[moves.size() * 95 / 100], 0.5 * report.spacing);
     EXPECT_NEAR(meanDensity(settled), scene.restDensity, 0.01 * scene.restDensity);
     EXPECT_EQ(sim->fault().code, 0);
+    // Nothing piles onto the simple walls: their wall weight holds the fluid off the planes
+    // (without it a third of the particles sat on one, measured in a dam break at h = 3d). Not
+    // checked for boundary particles, which leave 8% on a plane here (248 of 3072, the collision
+    // response catching what gets through them).
+    if (GetParam() != WallModel::Simple) {
+        return;
+    }
+    const SphParams& p = sim->params();
+    std::size_t onAPlane = 0;
+    for (std::size_t i = 0; i < settled.size(); ++i) {
+        const Vec3 x(settled.x[i], settled.y[i], settled.z[i]);
+        bool on = false;
+        for (int a = 0; a < 3; ++a) {
+            on = on || x[a] <= p.boxMin[a] + 1e-6f || x[a] >= p.boxMax[a] - 1e-6f;
+        }
+        onAPlane += on;
+    }
+    EXPECT_LT(onAPlane, settled.size() / 100);
 }
 
 INSTANTIATE_TEST_SUITE_P(Walls, RestState,
