@@ -30,7 +30,17 @@ done
 ls "$out"/killed/*.tmp* >/dev/null 2>&1 && { echo "FAIL: temporary files left"; exit 1; }
 
 # 2. A rank that cannot hold its particles: it says which rank and why, and all ranks end.
-"$mpiexec" -n 2 --oversubscribe "$weir" run dam_break --backend cpu -n 2000000000 -q \
+# Twice what this machine's free memory holds at ~100 bytes a particle (weir's largest count
+# where that is more).
+available_kib=$(awk '/MemAvailable/ {print $2}' /proc/meminfo)
+count=$(( available_kib * 1024 / 100 * 2 ))
+[ "$count" -gt 2147483647 ] && count=2147483647
+if [ $(( count / 2 * 116 / 1024 )) -lt "$available_kib" ]; then
+    echo "SKIP part 2: this machine's memory holds the largest particle count weir takes"
+    echo PASS
+    exit 0
+fi
+"$mpiexec" -n 2 --oversubscribe "$weir" run dam_break --backend cpu -n "$count" -q \
     -o "$out/huge" >"$out/huge.log" 2>&1
 code=$?
 [ "$code" -ne 0 ] || { echo "FAIL: an impossible run succeeded"; exit 1; }
