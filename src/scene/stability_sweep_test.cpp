@@ -25,12 +25,16 @@ namespace {
 // goes as (u / c)^2). An impact is another matter: a front stopped from speed u (against a wall,
 // or against an equal front: by symmetry the same thing) compresses by Joukowsky's water hammer,
 // p = rho0 c u, i.e. u / c, linear in the Mach number. A dam-break front runs at up to Ritter's
-// 2 sqrt(g H) = sqrt(2) U, so single particles at the impact reach up to sqrt(2) / 10 = 14%, and
-// the sharper the impact is resolved, the closer they get (double_dam_break with boundary
-// particles at h = 2d: 7.5% at 648 particles, 8.6% at 30k with fronts at 3.1 m/s, 12.0% at 100k
-// on a GPU; u / c = 9.2% at 30k). The per-frame maximum is allowed 15%, the mean 1%. The simple
-// walls hold pressure too (physics/wall_weight.h), so the same bounds hold for both models.
-constexpr double kMaxDeviation = 0.15;
+// 2 sqrt(g H) = sqrt(2) U, so particles at the impact reach about sqrt(2) / 10 = 14%. The single
+// most compressed particle is an extreme value: the more particles, the further into the tail it
+// reaches, and the sharper the impact is resolved (double_dam_break, boundary particles, h = 2d:
+// 7.5% at 648 particles, 8.6% at 30k, 12.0% at 100k, 16.1% at 1M; on a GPU, 2026-11-22). So the
+// tail is bounded where it does not grow with the count: all but one particle in a thousand stay
+// within the water hammer's 14% (15%); the mean within 1%; and the single largest within 30%,
+// short of particles run into each other (a spacing shrunk by 11%), which is what a real
+// instability does. The simple walls hold pressure too (physics/wall_weight.h): same bounds.
+constexpr double kTailDeviation = 0.15;
+constexpr double kMaxDeviation = 0.30;
 constexpr double kMeanDeviation = 0.01;
 
 using SweepCase = std::tuple<std::string, std::int64_t, double, bool>;  // scene, n, ratio, walls
@@ -62,14 +66,16 @@ TEST_P(StabilitySweep, RunsToTheEndStable) {
         const DensityDeviation d = densityDeviation(p, scene.restDensity);
         worst.max = std::max(worst.max, d.max);
         worst.mean = std::max(worst.mean, d.mean);
+        worst.p999 = std::max(worst.p999, d.p999);
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << "sweep " << name << " n=" << sim->particleCount() << " h/d=" << ratio
               << (boundaryParticles ? " walls=particles" : " walls=simple") << ": "
               << sim->stepCount() << " steps to t=" << sim->time() << " s, worst " << worst.text()
-              << ", " << seconds << " s\n";
+              << ", 99.9th percentile +" << 100 * worst.p999 << "%, " << seconds << " s\n";
     EXPECT_EQ(sim->time(), double(report.frames) * report.frameInterval);
+    EXPECT_LE(worst.p999, kTailDeviation);
     EXPECT_LE(worst.max, kMaxDeviation);
     EXPECT_LE(worst.mean, kMeanDeviation);
 }
