@@ -32,7 +32,8 @@ namespace {
 // tail is bounded where it does not grow with the count: all but one particle in a thousand stay
 // within the water hammer's 14% (15%); the mean within 1%; and the single largest within 30%,
 // short of particles run into each other (a spacing shrunk by 11%), which is what a real
-// instability does. The simple walls hold pressure too (physics/wall_weight.h): same bounds.
+// instability does (at 1M on an H100 the percentile measured 1.8-4.4%, the largest up to 21.7%).
+// The simple walls hold pressure too (physics/wall_weight.h): same bounds.
 constexpr double kTailDeviation = 0.15;
 constexpr double kMaxDeviation = 0.30;
 constexpr double kMeanDeviation = 0.01;
