@@ -88,23 +88,23 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         std::unique_ptr<Simulation> sim;
         DistributedSimulation* cluster = nullptr;
         if (launchedByMpi()) {
-            auto distributed = std::make_unique<DistributedSimulation>(*comm, backend, mode,
-                                                                       std::move(setup));
+            auto distributed =
+                std::make_unique<DistributedSimulation>(*comm, backend, mode, std::move(setup));
             cluster = distributed.get();
             sim = std::move(distributed);
         } else {
             sim = makeSimulation(backend, mode, std::move(setup));
         }
-        log << "weir: " << sim->particleCount() << " particles on " << backendName(backend)
-            << " (" << sim->deviceName() << "), " << neighbourModeName(mode)
-            << " neighbours, dt " << sim->params().timeStep << " s"
+        log << "weir: " << sim->particleCount() << " particles on " << backendName(backend) << " ("
+            << sim->deviceName() << "), " << neighbourModeName(mode) << " neighbours, dt "
+            << sim->params().timeStep << " s"
             << (sim->params().adaptiveTimeStep ? " (adaptive)" : "") << ", about "
             << report.stepsPerFrame << " steps per frame, " << frames << " frames to " << outDir
             << "/\n";
         if (cluster != nullptr) {
             const Decomposition& d = cluster->decomposition();
-            log << "weir: " << d.ranks() << " ranks, slabs along " << "xyz"[d.axis()]
-                << ", one per rank, balanced by particle count\n";
+            log << "weir: " << d.ranks() << " ranks, slabs along "
+                << "xyz"[d.axis()] << ", one per rank, balanced by particle count\n";
         }
 
         std::unique_ptr<FrameWriter> writer;
@@ -127,8 +127,9 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             FaultRecord fault = sim->fault();
             if (fault.code != 0) {
                 progress.finish();
-                log << "weir: error: " << describeFault(fault, sim->params()) << "\nweir: frames 0.."
-                    << frame - 1 << " in " << outDir << "/ are complete and kept.\n";
+                log << "weir: error: " << describeFault(fault, sim->params())
+                    << "\nweir: frames 0.." << frame - 1 << " in " << outDir
+                    << "/ are complete and kept.\n";
                 return kExitBlowUp;
             }
             sim->download(host);

@@ -22,9 +22,9 @@ namespace weir {
 namespace {
 
 struct Timing {
-    double stepMs = 0;          // median over blocks, slowest rank
-    double exchangeMs = 0;      // distributed: host time of the last exchange, slowest rank
-    std::int64_t ghosts = 0;    // distributed: ghosts on the rank with most
+    double stepMs = 0;           // median over blocks, slowest rank
+    double exchangeMs = 0;       // distributed: host time of the last exchange, slowest rank
+    std::int64_t ghosts = 0;     // distributed: ghosts on the rank with most
     std::int64_t bytesSent = 0;  // distributed: bytes sent per step, all ranks
     std::int64_t particles = 0;
 };
@@ -39,10 +39,10 @@ Timing timeSteps(Simulation& sim, Communicator& comm, int warmup, int steps, int
         const auto start = std::chrono::steady_clock::now();
         sim.advance(steps);
         sim.synchronize();
-        std::vector<double> ms{std::chrono::duration<double, std::milli>(
-                                   std::chrono::steady_clock::now() - start)
-                                   .count() /
-                               steps};
+        std::vector<double> ms{
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count() /
+            steps};
         comm.maxInPlace(ms);
         perStep.push_back(ms[0]);
     }
@@ -131,16 +131,18 @@ int scalingBenchCommand(const BenchOptions& options) {
             run["transport"] = transport;
             if (transport != "host" && ranks > 1) {
                 // The same weak run with ghosts staged through the host, for comparison.
-                const Timing staged = distributedTiming(*world, scene, n * ranks, backend, mode,
-                                                        options, HaloTransport::Host,
-                                                        &hostTransport);
+                const Timing staged =
+                    distributedTiming(*world, scene, n * ranks, backend, mode, options,
+                                      HaloTransport::Host, &hostTransport);
                 run["weakHostStaged"] = {{"stepMs", staged.stepMs},
                                          {"exchangeMs", staged.exchangeMs},
                                          {"efficiency", one.stepMs / staged.stepMs}};
             }
             auto put = [](const Timing& t) {
-                return nlohmann::json{{"particles", t.particles},     {"stepMs", t.stepMs},
-                                      {"exchangeMs", t.exchangeMs},   {"ghostsMax", t.ghosts},
+                return nlohmann::json{{"particles", t.particles},
+                                      {"stepMs", t.stepMs},
+                                      {"exchangeMs", t.exchangeMs},
+                                      {"ghostsMax", t.ghosts},
                                       {"bytesSentPerStep", t.bytesSent}};
             };
             run["single"] = put(one);
@@ -157,17 +159,17 @@ int scalingBenchCommand(const BenchOptions& options) {
                     "exchange %.3f ms) | strong: %lld on %d ranks %.4f ms/step, speedup %.2f, "
                     "efficiency %.1f%%\n",
                     (long long)one.particles, one.stepMs, (long long)weak.particles, ranks,
-                    weak.stepMs, 100 * run["weakEfficiency"].get<double>(),
-                    (long long)weak.ghosts, weak.bytesSent / 1e6, weak.exchangeMs,
-                    (long long)strong.particles, ranks, strong.stepMs,
-                    run["strongSpeedup"].get<double>(),
+                    weak.stepMs, 100 * run["weakEfficiency"].get<double>(), (long long)weak.ghosts,
+                    weak.bytesSent / 1e6, weak.exchangeMs, (long long)strong.particles, ranks,
+                    strong.stepMs, run["strongSpeedup"].get<double>(),
                     100 * run["strongEfficiency"].get<double>());
                 std::printf("  halo transport %s", transport.c_str());
                 if (run.contains("weakHostStaged")) {
-                    std::printf("; weak with the halo staged through the host: %.4f ms/step, "
-                                "efficiency %.1f%%",
-                                run["weakHostStaged"]["stepMs"].get<double>(),
-                                100 * run["weakHostStaged"]["efficiency"].get<double>());
+                    std::printf(
+                        "; weak with the halo staged through the host: %.4f ms/step, "
+                        "efficiency %.1f%%",
+                        run["weakHostStaged"]["stepMs"].get<double>(),
+                        100 * run["weakHostStaged"]["efficiency"].get<double>());
                 }
                 std::printf("\n");
                 std::fflush(stdout);

@@ -1,13 +1,14 @@
 // The distributed step: exchange, agree on dt, step each slab, rebalance now and then.
 #include "cluster/distributed_simulation.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <set>
 #include <stdexcept>
-#include <unistd.h>
 
 #include "cluster/particle_routing.h"
 #include "core/check.h"
@@ -99,8 +100,8 @@ AxisHistogram setupHistogram(const SimulationSetup& setup, int axis, int bins) {
     // million samples in all; the first rebalance corrects what sampling misses.
     const SeedShapes shapes = setup.seeds.shapes();
     for (const SeedLattice& lattice : setup.seeds.lattices) {
-        const std::int64_t s = std::max<std::int64_t>(
-            1, std::int64_t(std::cbrt(double(lattice.points()) / 1e6)));
+        const std::int64_t s =
+            std::max<std::int64_t>(1, std::int64_t(std::cbrt(double(lattice.points()) / 1e6)));
         for (std::int64_t k = s / 2; k < lattice.nz; k += s) {
             for (std::int64_t j = s / 2; j < lattice.ny; j += s) {
                 for (std::int64_t i = s / 2; i < lattice.nx; i += s) {
@@ -134,8 +135,8 @@ DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend
     const AxisHistogram histogram = setupHistogram(setup, axis, options.histogramBins);
     const std::int64_t expected =
         countsPerRank(histogram, decomposition_)[std::size_t(comm_.rank())];
-    local_ = makeSimulation(backend, mode,
-                            shareOf(setup, decomposition_.slab(comm_.rank()), expected));
+    local_ =
+        makeSimulation(backend, mode, shareOf(setup, decomposition_.slab(comm_.rank()), expected));
     // NCCL wants one GPU per rank: ranks that share one (more ranks than GPUs) stage ghosts
     // through the host.
     bool gpuPerRank = true;
@@ -143,7 +144,8 @@ DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend
         const std::string mine = hostName() + ":" + std::to_string(currentCudaDevice());
         std::set<std::string> seen;
         for (const Bytes& theirs : comm_.allGather(Bytes(mine.begin(), mine.end()))) {
-            gpuPerRank = seen.insert(std::string(theirs.begin(), theirs.end())).second && gpuPerRank;
+            gpuPerRank =
+                seen.insert(std::string(theirs.begin(), theirs.end())).second && gpuPerRank;
         }
     }
     const bool gpu = backend == Backend::Cuda && comm_.size() > 1 && gpuPerRank;
@@ -209,7 +211,7 @@ void DistributedSimulation::exchange() {
 }
 
 std::int64_t DistributedSimulation::exchangeGhostsOnDevice(const Slab& share,
-                                                          std::int64_t* bytesSent) {
+                                                           std::int64_t* bytesSent) {
     const int self = comm_.rank();
     std::vector<Slab> windows;
     std::vector<int> toRanks;
@@ -314,9 +316,8 @@ void DistributedSimulation::rebalance() {
 
 void DistributedSimulation::setDecomposition(const Decomposition& decomposition) {
     if (decomposition.ranks() != comm_.size()) {
-        throw std::invalid_argument("a decomposition of " +
-                                    std::to_string(decomposition.ranks()) + " slabs for " +
-                                    std::to_string(comm_.size()) + " ranks");
+        throw std::invalid_argument("a decomposition of " + std::to_string(decomposition.ranks()) +
+                                    " slabs for " + std::to_string(comm_.size()) + " ranks");
     }
     decomposition_ = decomposition;
     fitGrid();

@@ -19,8 +19,8 @@ void check(int status, const char* what) {
         char text[MPI_MAX_ERROR_STRING];
         int length = 0;
         MPI_Error_string(status, text, &length);
-        throw std::runtime_error(std::string("MPI ") + what + " failed: " +
-                                 std::string(text, std::size_t(length)));
+        throw std::runtime_error(std::string("MPI ") + what +
+                                 " failed: " + std::string(text, std::size_t(length)));
     }
 }
 
@@ -84,7 +84,8 @@ class MpiCommunicator final : public Communicator {
               "Allreduce(sum)");
     }
     std::vector<Bytes> exchange(const std::vector<Bytes>& toRank) override {
-        std::vector<int> sendCounts(static_cast<std::size_t>(size_)), receiveCounts(static_cast<std::size_t>(size_));
+        std::vector<int> sendCounts(static_cast<std::size_t>(size_)),
+            receiveCounts(static_cast<std::size_t>(size_));
         for (int r = 0; r < size_; ++r) {
             sendCounts[std::size_t(r)] = byteCount(toRank[std::size_t(r)].size());
         }
@@ -139,8 +140,7 @@ class MpiCommunicator final : public Communicator {
                                         " ranks of " + std::to_string(size_));
         }
         MPI_Comm sub = MPI_COMM_NULL;
-        check(MPI_Comm_split(comm_, rank_ < count ? 0 : MPI_UNDEFINED, rank_, &sub),
-              "Comm_split");
+        check(MPI_Comm_split(comm_, rank_ < count ? 0 : MPI_UNDEFINED, rank_, &sub), "Comm_split");
         if (sub == MPI_COMM_NULL) {
             return nullptr;
         }

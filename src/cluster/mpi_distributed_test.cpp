@@ -26,8 +26,7 @@ Communicator& world() {
 // The largest distance between a particle in the distributed run and in the single-rank run
 // after `time` seconds, on rank 0 (-1 elsewhere).
 double divergenceAfter(Backend backend, NeighbourMode mode, const Scene& scene, double time,
-                       long long* steps = nullptr,
-                       HaloTransport transport = HaloTransport::Auto) {
+                       long long* steps = nullptr, HaloTransport transport = HaloTransport::Auto) {
     auto plain = testing::start(scene, backend, mode);
     DistributedOptions options;
     options.transport = transport;
@@ -62,9 +61,8 @@ TEST(Distributed, MatchesTheSingleRankRunOnTheCpu) {
             const double spacing = buildSetup(scene, {}, nullptr).params.kernel.h / 2;
             std::printf("%s, %d ranks, %lld steps: largest difference %.3g of the spacing\n",
                         neighbourModeName(mode), world().size(), steps, worst / spacing);
-            EXPECT_LT(worst, 1e-3 * spacing)
-                << neighbourModeName(mode) << ", " << world().size() << " ranks, " << steps
-                << " steps";
+            EXPECT_LT(worst, 1e-3 * spacing) << neighbourModeName(mode) << ", " << world().size()
+                                             << " ranks, " << steps << " steps";
         }
     }
 }
@@ -94,10 +92,11 @@ TEST(Distributed, MatchesTheSingleRankRunOnTheGpu) {
         const double worst =
             divergenceAfter(Backend::Cuda, NeighbourMode::Dense, scene, time, &steps, transport);
         if (world().rank() == 0) {
-            std::printf("cuda %s, %d ranks, %lld steps: largest difference %.3g of the spacing "
-                        "(dense against grid on one GPU: %.3g)\n",
-                        transport == HaloTransport::Auto ? "auto" : "host", world().size(), steps,
-                        worst / spacing, noise / spacing);
+            std::printf(
+                "cuda %s, %d ranks, %lld steps: largest difference %.3g of the spacing "
+                "(dense against grid on one GPU: %.3g)\n",
+                transport == HaloTransport::Auto ? "auto" : "host", world().size(), steps,
+                worst / spacing, noise / spacing);
             EXPECT_LT(worst, std::max(1e-3 * spacing, 3 * noise)) << world().size() << " ranks";
             EXPECT_LT(worst, 0.05 * spacing);  // the CPU-against-GPU bound (solver_cuda_test)
         }

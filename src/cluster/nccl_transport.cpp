@@ -18,8 +18,8 @@ namespace {
 
 void check(ncclResult_t status, const char* what) {
     if (status != ncclSuccess) {
-        throw std::runtime_error(std::string("NCCL ") + what + " failed: " +
-                                 ncclGetErrorString(status));
+        throw std::runtime_error(std::string("NCCL ") + what +
+                                 " failed: " + ncclGetErrorString(status));
     }
 }
 
@@ -55,8 +55,7 @@ NcclTransport::~NcclTransport() {
 }
 
 void NcclTransport::exchange(const ParticleSpans& from, const std::vector<int>& toRanks,
-                             const std::vector<std::int64_t>& sendCounts,
-                             const ParticleSpans& into,
+                             const std::vector<std::int64_t>& sendCounts, const ParticleSpans& into,
                              const std::vector<std::int64_t>& receiveCounts, void* stream) {
     cudaStream_t s = static_cast<cudaStream_t>(stream);
     check(ncclGroupStart(), "GroupStart");

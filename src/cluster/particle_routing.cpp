@@ -2,12 +2,12 @@
 // velocities and ids as arrays.
 #include "cluster/particle_routing.h"
 
-#include "physics/stages.h"
-
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <string>
+
+#include "physics/stages.h"
 
 namespace weir {
 

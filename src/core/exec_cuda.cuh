@@ -150,7 +150,8 @@ class CudaExec {
             cudaMemcpyAsync(dst, src.data(), n * sizeof(T), cudaMemcpyDeviceToHost, stream_));
         WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
     }
-    // n elements between the host and a buffer from element `offset` on (the buffer keeps its size).
+    // n elements between the host and a buffer from element `offset` on (the buffer keeps its
+    // size).
     template <class T>
     void uploadAt(Buffer<T>& dst, std::size_t offset, const T* src, std::size_t n) {
         if (n == 0) {

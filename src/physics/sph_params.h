@@ -46,8 +46,8 @@ struct SphParams {
     Real friction = 0;     // share of tangential speed removed on contact
     WallKind walls = WallKind::Simple;
     WallWeightTable wallWeight;  // the simple walls' planes (physics/wall_weight.h); empty: bare
-    Real wallViscosity = 0;  // mu against boundary particles, Pa s (0: free slip)
-    Real maxSpeed = 0;       // blow-up bound, m/s
+    Real wallViscosity = 0;      // mu against boundary particles, Pa s (0: free slip)
+    Real maxSpeed = 0;           // blow-up bound, m/s
 };
 
 }  // namespace weir

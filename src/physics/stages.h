@@ -126,11 +126,11 @@ WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighb
                                rhoi, vj.w, vi.xyz(), vj.xyz());
         }
     });
-    const Vec3 walls = params.walls == WallKind::Simple
-                           ? wallAcceleration(params.wallWeight, params.boxMin, params.boxMax, xi,
-                                              rhoi, pi)
-                           : boundaryAcceleration(pv.boundary, params.kernel, xi, vi.xyz(), rhoi,
-                                                  pi, params.wallViscosity, params.invRestDensity);
+    const Vec3 walls =
+        params.walls == WallKind::Simple
+            ? wallAcceleration(params.wallWeight, params.boxMin, params.boxMax, xi, rhoi, pi)
+            : boundaryAcceleration(pv.boundary, params.kernel, xi, vi.xyz(), rhoi, pi,
+                                   params.wallViscosity, params.invRestDensity);
     return force / rhoi + params.gravity + walls;
 }
 

@@ -29,8 +29,8 @@ namespace weir {
 // the seeded layers (d/2, 3d/2, ...) fall on samples and read exactly; linear in between.
 struct WallWeightTable {
     static constexpr int kMaxSamples = 65;
-    int samples = 0;          // 0: no wall weight (the bare collision response)
-    Real invStep = 0;         // 1 / sample step, 1/m
+    int samples = 0;               // 0: no wall weight (the bare collision response)
+    Real invStep = 0;              // 1 / sample step, 1/m
     Real share[kMaxSamples] = {};  // the lattice's density beyond the plane / rho0
     Real push[kMaxSamples] = {};   // m sum of -grad W . n over it (n into the fluid), kg/m^4
 };

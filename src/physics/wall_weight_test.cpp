@@ -82,8 +82,8 @@ TEST(WallWeight, LatticeAgainstTheWallsReadsRestDensity) {
                         }
                     }
                 }
-                rho += double(
-                    wallDensity(t, boxMin, boxMax, Real(rho0), Vec3(at[0], at[1], at[2])));
+                rho +=
+                    double(wallDensity(t, boxMin, boxMax, Real(rho0), Vec3(at[0], at[1], at[2])));
                 SCOPED_TRACE("h/d = " + std::to_string(ratio) + ", " + std::to_string(walls) +
                              " wall(s), layer " + std::to_string(layer));
                 if (walls == 1) {

@@ -95,8 +95,7 @@ std::unique_ptr<Simulation> makeSimulation(Backend backend, NeighbourMode mode,
                                            SimulationSetup setup) {
     mode = resolveNeighbourMode(mode, setup.grid, setup.particleCount());
     if (backend == Backend::Cpu) {
-        checkMemoryFits(Index(setup.countHere()), mode, CpuExec().freeMemoryBytes(),
-                        "host memory");
+        checkMemoryFits(Index(setup.countHere()), mode, CpuExec().freeMemoryBytes(), "host memory");
         return makeCpuSimulation(mode, std::move(setup));
     }
 #if defined(WEIR_HAS_CUDA)

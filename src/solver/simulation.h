@@ -107,9 +107,9 @@ class Simulation {
     virtual void downloadOwned(ParticleBatch& out) = 0;
     // counts[b] += owned particles in bin b of width binWidth from lo along `axis` (clamped).
     virtual void histogram(int axis, double lo, double binWidth, std::vector<Index>& counts) = 0;
-    // Stages ghost copies (arriving: position w = 2) of the owned particles of `share` inside each window, window
-    // after window, in this backend's memory (device memory on CUDA, for NCCL to send);
-    // counts[k] = particles of window k.
+    // Stages ghost copies (arriving: position w = 2) of the owned particles of `share` inside each
+    // window, window after window, in this backend's memory (device memory on CUDA, for NCCL to
+    // send); counts[k] = particles of window k.
     virtual ParticleSpans stageWindows(const Slab& share, const std::vector<Slab>& windows,
                                        std::vector<std::int64_t>& counts) = 0;
     // Room for `count` more ghost copies at the end, in this backend's memory, to be written

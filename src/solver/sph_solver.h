@@ -259,9 +259,9 @@ class SphSolver final : public Simulation {
                     newId[to] = id[from];
                 },
                 [=] WEIR_HD(Index i) {
-                    return distributed && (pos[i].w == kGhostMark ||
-                                           (pos[i].w == Real(0) &&
-                                            !share.contains(share.coordinate(pos[i]))));
+                    return distributed &&
+                           (pos[i].w == kGhostMark ||
+                            (pos[i].w == Real(0) && !share.contains(share.coordinate(pos[i]))));
                 });
             pos_.swap(sortedPos_);
             vel_.swap(sortedVel_);
@@ -280,8 +280,8 @@ class SphSolver final : public Simulation {
 #endif
                 if constexpr (check) {
                     const Index kept = dense_.keptCount(exec_);
-                    WEIR_REQUIRE(n_ == kept, "the grid build kept " << kept << " particles, not "
-                                                                    << n_);
+                    WEIR_REQUIRE(n_ == kept,
+                                 "the grid build kept " << kept << " particles, not " << n_);
                 }
             }
         }
@@ -764,7 +764,7 @@ class SphSolver final : public Simulation {
     SphParams params_;
     NeighbourGrid<Exec> sparse_;
     DenseGrid<Exec> dense_;
-    GridSpec denseFull_;  // the dense table's cells over the whole container
+    GridSpec denseFull_;        // the dense table's cells over the whole container
     bool distributed_ = false;  // one rank's part: the dense build drops ghosts and leavers
     Slab share_;                // that rank's slab
     Index heldGhosts_ = 0;      // ghosts of this step (mark 1)
@@ -776,7 +776,7 @@ class SphSolver final : public Simulation {
     bool targetSet_ = false;
     Buffer<Real4> pos_, vel_, acc_, sortedPos_, sortedVel_;
     Buffer<Index> id_, sortedId_;
-    Buffer<Index> flags_;                 // distributed runs: selection flags and their sums
+    Buffer<Index> flags_;                // distributed runs: selection flags and their sums
     Buffer<Real4> stagePos_, stageVel_;  // distributed runs: particles on their way to the host
     Buffer<Index> stageId_;
     Buffer<ObstacleBox> boxes_;
