@@ -67,7 +67,10 @@ int weirMain(int argc, char** argv) {
     for (const std::string& name : builtinSceneNames()) {
         scenes += (scenes.empty() ? "" : ", ") + name;
     }
-    CLI::App* runCmd = app.add_subcommand("run", "Simulate a scene and write particle frames");
+    CLI::App* runCmd = app.add_subcommand(
+        "run",
+        "Simulate a scene and write particle frames (started by mpirun -n R: one simulation "
+        "across R ranks, one GPU each; see docs/cluster.md)");
     runCmd->add_option("scene", run.scene,
                        "Scene JSON file or built-in scene (" + scenes + "); default dam_break");
     runCmd->add_option("--backend", run.backend, "auto (GPU if present), cuda or cpu")
