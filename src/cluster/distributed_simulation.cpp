@@ -247,8 +247,8 @@ std::int64_t DistributedSimulation::exchangeGhostsOnDevice(const Slab& share,
 }
 
 bool DistributedSimulation::agreeOnClock() {
-    StepClock clock = local_->clock();
-    const FaultRecord fault = local_->fault();
+    FaultRecord fault;
+    StepClock clock = local_->clockAndFault(fault);
     std::vector<double> values{double(bitsFloat(clock.maxSpeed2)),
                                double(bitsFloat(clock.maxAccel2)), double(fault.code != 0)};
     comm_.maxInPlace(values);
@@ -256,6 +256,11 @@ bool DistributedSimulation::agreeOnClock() {
     clock.maxAccel2 = floatBits(float(values[1]));
     local_->setClock(clock);
     faulted_ = values[2] > 0;
+    // Where the clock will be after this step: the device's own one-thread stages, run here on
+    // the same inputs (so the host needs no read-back to know when a frame time is reached).
+    predicted_ = clock;
+    weir::beginStep(predicted_, local_->params());
+    weir::endStep(predicted_);
     return faulted_;
 }
 
@@ -274,7 +279,16 @@ void DistributedSimulation::advanceTo(double target) {
     StepClock clock = local_->clock();
     clock.target = target;
     local_->setClock(clock);
-    while (local_->clock().time < target && !faulted_) {
+    predicted_ = clock;
+    while (!faulted_) {
+        if (predicted_.time >= target) {
+            // The prediction says the frame time is reached: confirm on the device (once a
+            // frame), in case host and device rounding chose the landing step differently.
+            predicted_ = local_->clock();
+            if (predicted_.time >= target) {
+                break;
+            }
+        }
         stepOnce();
     }
 }

@@ -84,6 +84,7 @@ class DistributedSimulation final : public Simulation {
     void restrictGrid(const Slab&, double) override { notAPart(); }
     void* deviceStream() override { return local_->deviceStream(); }
     StepClock clock() override { return local_->clock(); }
+    StepClock clockAndFault(FaultRecord& fault) override { return local_->clockAndFault(fault); }
     void setClock(const StepClock& clock) override { local_->setClock(clock); }
     void stepOnce() override;
 
@@ -116,6 +117,7 @@ class DistributedSimulation final : public Simulation {
     double boxLo_ = 0, boxExtent_ = 0;
     int stepsSinceBalance_ = 0;
     bool faulted_ = false;
+    StepClock predicted_{};  // the clock after the step in flight, as the device will have it
     ExchangeStats stats_;
 };
 

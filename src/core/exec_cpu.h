@@ -73,6 +73,14 @@ class CpuExec {
         std::copy(src.data() + offset, src.data() + offset + n, dst);
     }
     template <class T>
+    void uploadAtAsync(Buffer<T>& dst, std::size_t offset, const T* src, std::size_t n) const {
+        uploadAt(dst, offset, src, n);
+    }
+    template <class T>
+    void downloadFromAsync(const Buffer<T>& src, std::size_t offset, T* dst, std::size_t n) const {
+        downloadFrom(src, offset, dst, n);
+    }
+    template <class T>
     T readOne(const Buffer<T>& src, std::size_t index) const {
         return src.data()[index];
     }

@@ -170,6 +170,22 @@ class CudaExec {
                                         cudaMemcpyDeviceToHost, stream_));
         WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
     }
+    // The same without waiting: the copy is done once synchronize() returns (the host memory
+    // must stay put until then). A distributed step queues several and waits once.
+    template <class T>
+    void uploadAtAsync(Buffer<T>& dst, std::size_t offset, const T* src, std::size_t n) {
+        if (n > 0) {
+            WEIR_CUDA_CHECK(cudaMemcpyAsync(dst.data() + offset, src, n * sizeof(T),
+                                            cudaMemcpyHostToDevice, stream_));
+        }
+    }
+    template <class T>
+    void downloadFromAsync(const Buffer<T>& src, std::size_t offset, T* dst, std::size_t n) {
+        if (n > 0) {
+            WEIR_CUDA_CHECK(cudaMemcpyAsync(dst, src.data() + offset, n * sizeof(T),
+                                            cudaMemcpyDeviceToHost, stream_));
+        }
+    }
     template <class T>
     T readOne(const Buffer<T>& src, std::size_t index) {
         T value;

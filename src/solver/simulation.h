@@ -120,6 +120,8 @@ class Simulation {
     // The backend's CUDA stream (cudaStream_t), nullptr on the CPU.
     virtual void* deviceStream() = 0;
     virtual StepClock clock() = 0;
+    // The clock and the first fault, read back in one wait.
+    virtual StepClock clockAndFault(FaultRecord& fault) = 0;
     virtual void setClock(const StepClock& clock) = 0;
     // One step with the clock as it is (the caller set the shared dt inputs and target).
     virtual void stepOnce() = 0;

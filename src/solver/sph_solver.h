@@ -583,9 +583,10 @@ class SphSolver final : public Simulation {
         growKeeping(pos_, total);
         growKeeping(vel_, total);
         growKeeping(id_, total);
-        exec_.uploadAt(pos_, std::size_t(n_), batch.pos.data(), std::size_t(m));
-        exec_.uploadAt(vel_, std::size_t(n_), batch.vel.data(), std::size_t(m));
-        exec_.uploadAt(id_, std::size_t(n_), batch.id.data(), std::size_t(m));
+        exec_.uploadAtAsync(pos_, std::size_t(n_), batch.pos.data(), std::size_t(m));
+        exec_.uploadAtAsync(vel_, std::size_t(n_), batch.vel.data(), std::size_t(m));
+        exec_.uploadAtAsync(id_, std::size_t(n_), batch.id.data(), std::size_t(m));
+        exec_.synchronize();  // one wait for the three
         for (const Real4& p : batch.pos) {
             arrivingGhosts_ += isGhost(p) ? 1 : 0;
         }
@@ -680,6 +681,13 @@ class SphSolver final : public Simulation {
     }
 
     StepClock clock() override { return exec_.readOne(clock_, 0); }
+    StepClock clockAndFault(FaultRecord& fault) override {
+        StepClock clock;
+        exec_.downloadFromAsync(clock_, 0, &clock, 1);
+        exec_.downloadFromAsync(fault_, 0, &fault, 1);
+        exec_.synchronize();
+        return clock;
+    }
     void setClock(const StepClock& clock) override { exec_.writeOne(clock_, 0, clock); }
     void stepOnce() override { step(); }
 
@@ -716,9 +724,10 @@ class SphSolver final : public Simulation {
         const Index count = compactInto(flag, stagePos_, stageVel_, stageId_, 0);
         const std::size_t at = out.size();
         out.resize(at + std::size_t(count));
-        exec_.downloadFrom(stagePos_, 0, out.pos.data() + at, std::size_t(count));
-        exec_.downloadFrom(stageVel_, 0, out.vel.data() + at, std::size_t(count));
-        exec_.downloadFrom(stageId_, 0, out.id.data() + at, std::size_t(count));
+        exec_.downloadFromAsync(stagePos_, 0, out.pos.data() + at, std::size_t(count));
+        exec_.downloadFromAsync(stageVel_, 0, out.vel.data() + at, std::size_t(count));
+        exec_.downloadFromAsync(stageId_, 0, out.id.data() + at, std::size_t(count));
+        exec_.synchronize();  // one wait for the three
         return count;
     }
 
