@@ -459,12 +459,8 @@ int benchCommand(const BenchOptions& options, SpriteDrawTimer* spriteTimer) {
             }
         }
         return kExitOk;
-    } catch (const std::invalid_argument& e) {
-        std::cerr << "weir: error: " << e.what() << "\n";
-        return kExitUsage;
-    } catch (const std::exception& e) {
-        std::cerr << "weir: error: " << e.what() << "\n";
-        return kExitError;
+    } catch (...) {
+        return reportCaughtError();
     }
 }
 

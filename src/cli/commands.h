@@ -9,12 +9,26 @@
 
 namespace weir {
 
+class Communicator;  // cluster/communicator.h
+
 // Exit codes shared by all commands.
 constexpr int kExitOk = 0;
 constexpr int kExitError = 1;             // bad scene, I/O failure, not enough memory
 constexpr int kExitUsage = 2;             // bad command-line arguments
 constexpr int kExitBlowUp = 3;            // the simulation blew up; frames already written stay
 constexpr int kExitValidationFailed = 4;  // weir validate: a check missed its tolerance
+
+// Inside a catch block: the exception being handled, as a message and the exit code it means
+// (kExitUsage for bad input, std::invalid_argument; kExitError for anything else).
+struct CaughtError {
+    std::string what;
+    int exitCode;
+};
+CaughtError caughtError();
+// Inside a catch block: prints "PREFIX: error: WHAT" and returns caughtError()'s exit code.
+int reportCaughtError(const std::string& prefix = "weir");
+// The same for a rank of a distributed run: names the rank and, with other ranks, ends them all.
+int reportCaughtError(Communicator& comm);
 
 struct RunOptions {
     std::string scene;  // file path or built-in name; empty: the built-in dam break

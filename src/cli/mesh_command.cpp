@@ -201,12 +201,8 @@ int meshCommand(const MeshOptions& options) {
         std::cerr << "weir: " << mesher.summary() << ", "
                   << formatDuration(progress.elapsedSeconds()) << " in all\n";
         return kExitOk;
-    } catch (const std::invalid_argument& e) {
-        std::cerr << "weir: error: " << e.what() << "\n";
-        return kExitUsage;
-    } catch (const std::exception& e) {
-        std::cerr << "weir: error: " << e.what() << "\n";
-        return kExitError;
+    } catch (...) {
+        return reportCaughtError();
     }
 }
 

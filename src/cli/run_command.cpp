@@ -35,18 +35,6 @@ std::ostream& nullStream() {
     return sink;
 }
 
-// Prints the error; in a distributed run, names the rank and ends every rank with `code` (the
-// others may be waiting for this one in a collective).
-int fail(Communicator& comm, int code, const std::string& what) {
-    if (comm.size() > 1) {
-        std::cerr << "weir: " << comm.where() << ": error: " << what
-                  << "\nweir: ending all ranks; frames already written are complete.\n";
-        comm.abort(code);
-    }
-    std::cerr << "weir: error: " << what << "\n";
-    return code;
-}
-
 }  // namespace
 
 int runCommand(const RunOptions& options, RunObserver* observer) {
@@ -160,10 +148,8 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
                 << " times to keep the ranks balanced\n";
         }
         return kExitOk;
-    } catch (const std::invalid_argument& e) {
-        return fail(*comm, kExitUsage, e.what());
-    } catch (const std::exception& e) {
-        return fail(*comm, kExitError, e.what());
+    } catch (...) {
+        return reportCaughtError(*comm);
     }
 }
 

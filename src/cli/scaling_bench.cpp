@@ -182,12 +182,8 @@ int scalingBenchCommand(const BenchOptions& options) {
             std::cerr << "weir bench --scaling: wrote " << path << "\n";
         }
         return kExitOk;
-    } catch (const std::exception& e) {
-        std::cerr << "weir: " << world->where() << ": error: " << e.what() << "\n";
-        if (world->size() > 1) {
-            world->abort(kExitError);
-        }
-        return kExitError;
+    } catch (...) {
+        return reportCaughtError(*world);
     }
 }
 

@@ -37,12 +37,8 @@ int validateCommand(const ValidateOptions& options) {
         std::cerr << "weir validate: results in " << options.outDir << "/\n";
         std::cout << (report.passed() ? "validation passed" : "validation FAILED") << "\n";
         return report.passed() ? kExitOk : kExitValidationFailed;
-    } catch (const std::invalid_argument& e) {
-        std::cerr << "weir validate: error: " << e.what() << "\n";
-        return kExitUsage;
-    } catch (const std::exception& e) {
-        std::cerr << "weir validate: error: " << e.what() << "\n";
-        return kExitError;
+    } catch (...) {
+        return reportCaughtError("weir validate");
     }
 }
 

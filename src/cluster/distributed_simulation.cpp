@@ -119,20 +119,16 @@ AxisHistogram setupHistogram(const SimulationSetup& setup, int axis, int bins) {
 DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend,
                                              NeighbourMode mode, SimulationSetup setup,
                                              DistributedOptions options)
-    : comm_(comm),
-      options_(options),
-      decomposition_(balancedDecomposition(
-          setupHistogram(setup, longestAxis(setup.params.boxMin, setup.params.boxMax),
-                         options.histogramBins),
-          comm.size())) {
+    : comm_(comm), options_(options), decomposition_(0, {}) {
     total_ = setup.particleCount();
-    const int axis = decomposition_.axis();
+    const int axis = longestAxis(setup.params.boxMin, setup.params.boxMax);
+    const AxisHistogram histogram = setupHistogram(setup, axis, options.histogramBins);
+    decomposition_ = balancedDecomposition(histogram, comm.size());
     haloWidth_ = 2.0 * double(setup.params.kernel.h);
     boxLo_ = double(setup.params.boxMin[axis]);
     boxExtent_ = double(setup.params.boxMax[axis] - setup.params.boxMin[axis]);
     // Every rank takes the same neighbour mode, the one a single run of the whole scene takes.
     mode = resolveNeighbourMode(mode, setup.grid, total_);
-    const AxisHistogram histogram = setupHistogram(setup, axis, options.histogramBins);
     const std::int64_t expected =
         countsPerRank(histogram, decomposition_)[std::size_t(comm_.rank())];
     local_ =
@@ -159,10 +155,6 @@ DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend
     }
     stats_.transport = nccl_ ? "nccl" : "host";
     fitGrid();
-}
-
-void DistributedSimulation::notAPart() {
-    throw std::logic_error("a distributed simulation is not one rank's part");
 }
 
 std::string DistributedSimulation::deviceName() const {

@@ -70,23 +70,10 @@ class DistributedSimulation final : public Simulation {
     long long stepCount() const override { return local_->stepCount(); }
     double time() const override { return local_->time(); }
 
-    // A distributed run is not itself one rank's part.
-    void takeLeavers(const Slab&, ParticleBatch&) override { notAPart(); }
-    void copyBorderParticles(const Slab&, double, ParticleBatch&) override { notAPart(); }
-    void append(const ParticleBatch&) override { notAPart(); }
-    void downloadOwned(ParticleBatch& out) override { local_->downloadOwned(out); }
-    void histogram(int, double, double, std::vector<Index>&) override { notAPart(); }
-    ParticleSpans stageWindows(const Slab&, const std::vector<Slab>&,
-                               std::vector<std::int64_t>&) override {
-        notAPart();
-    }
-    ParticleSpans appendSpace(std::size_t) override { notAPart(); }
-    void restrictGrid(const Slab&, double) override { notAPart(); }
-    void* deviceStream() override { return local_->deviceStream(); }
-    StepClock clock() override { return local_->clock(); }
-    StepClock clockAndFault(FaultRecord& fault) override { return local_->clockAndFault(fault); }
-    void setClock(const StepClock& clock) override { local_->setClock(clock); }
-    void stepOnce() override;
+    // One step on every rank: exchange, agree on dt, step each slab (collective).
+    void stepOnce();
+    // This rank's own particles (no ghosts), in its current order.
+    void downloadOwned(ParticleBatch& out) { local_->downloadOwned(out); }
 
     const Decomposition& decomposition() const { return decomposition_; }
     const ExchangeStats& exchangeStats() const { return stats_; }
@@ -97,7 +84,6 @@ class DistributedSimulation final : public Simulation {
     void setDecomposition(const Decomposition& decomposition);
 
    private:
-    [[noreturn]] static void notAPart();
     void exchange();
     // The rank's neighbour table over its slab and halo only.
     void fitGrid();
@@ -109,7 +95,7 @@ class DistributedSimulation final : public Simulation {
 
     Communicator& comm_;
     DistributedOptions options_;
-    std::unique_ptr<Simulation> local_;
+    std::unique_ptr<RankPart> local_;
     std::unique_ptr<NcclTransport> nccl_;  // null: ghosts staged through the host
     Decomposition decomposition_;
     std::int64_t total_ = 0;

@@ -278,11 +278,6 @@ double particleSpacing(const RenderOptions& options, const std::optional<Scene>&
     return 2 * estimateParticleRadius(first);
 }
 
-int reportError(const std::exception& e, int code) {
-    std::cerr << "weir: error: " << e.what() << "\n";
-    return code;
-}
-
 }  // namespace
 
 std::unique_ptr<RunObserver> makeRunRenderer(const RenderOptions& options) {
@@ -383,10 +378,8 @@ int renderCommand(const RenderOptions& options) {
             std::cerr << "weir: video " << options.video << " (H.264, " << fps << " frames/s)\n";
         }
         return kExitOk;
-    } catch (const std::invalid_argument& e) {
-        return reportError(e, kExitUsage);
-    } catch (const std::exception& e) {
-        return reportError(e, kExitError);
+    } catch (...) {
+        return reportCaughtError();
     }
 }
 

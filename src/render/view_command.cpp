@@ -494,12 +494,8 @@ int viewCommand(const ViewOptions& options) {
         viewer.reset();
         viewer.run();
         return kExitOk;
-    } catch (const std::invalid_argument& e) {
-        std::cerr << "weir: error: " << e.what() << "\n";
-        return kExitUsage;
-    } catch (const std::exception& e) {
-        std::cerr << "weir: error: " << e.what() << "\n";
-        return kExitError;
+    } catch (...) {
+        return reportCaughtError();
     }
 }
 

@@ -10,9 +10,9 @@
 
 namespace weir {
 
-std::unique_ptr<Simulation> makeCpuSimulation(NeighbourMode mode, SimulationSetup setup);
+std::unique_ptr<RankPart> makeCpuSimulation(NeighbourMode mode, SimulationSetup setup);
 #if defined(WEIR_HAS_CUDA)
-std::unique_ptr<Simulation> makeCudaSimulation(NeighbourMode mode, SimulationSetup setup);
+std::unique_ptr<RankPart> makeCudaSimulation(NeighbourMode mode, SimulationSetup setup);
 #endif
 
 NeighbourMode parseNeighbourMode(const std::string& name) {
@@ -91,8 +91,8 @@ void checkMemoryFits(Index count, NeighbourMode mode, std::size_t freeBytes,
     }
 }
 
-std::unique_ptr<Simulation> makeSimulation(Backend backend, NeighbourMode mode,
-                                           SimulationSetup setup) {
+std::unique_ptr<RankPart> makeSimulation(Backend backend, NeighbourMode mode,
+                                         SimulationSetup setup) {
     mode = resolveNeighbourMode(mode, setup.grid, setup.particleCount());
     if (backend == Backend::Cpu) {
         checkMemoryFits(Index(setup.countHere()), mode, CpuExec().freeMemoryBytes(), "host memory");

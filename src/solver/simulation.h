@@ -94,14 +94,19 @@ class Simulation {
     virtual long long stepCount() const = 0;
     // Simulated time, s (read back from the device clock).
     virtual double time() const = 0;
+};
 
-    // ---- One rank's part of a distributed run (cluster/distributed_simulation.h) ----
+// A simulation on one backend that can also be one rank's part of a distributed run
+// (cluster/distributed_simulation.h): its particles are exchanged between steps. Every
+// backend's solver is one.
+class RankPart : public Simulation {
+   public:
     // Copies the owned particles outside `share` into `leaving` and drops them and the ghosts
     // (at once, or, with the dense table, in the next grid build).
     virtual void takeLeavers(const Slab& share, ParticleBatch& leaving) = 0;
     // Appends copies of the owned particles within `width` of the borders of `share` to `out`.
     virtual void copyBorderParticles(const Slab& share, double width, ParticleBatch& out) = 0;
-    // Adds particles: arrivals, or ghost copies (position w = 1).
+    // Adds particles: arrivals, or ghost copies (position w = 2, arriving).
     virtual void append(const ParticleBatch& batch) = 0;
     // Appends the owned particles (no ghosts) to `out`, in the current order.
     virtual void downloadOwned(ParticleBatch& out) = 0;
@@ -128,8 +133,8 @@ class Simulation {
 };
 
 // Creates a simulation on a backend; throws SimulationError if the particles do not fit in memory.
-std::unique_ptr<Simulation> makeSimulation(Backend backend, NeighbourMode mode,
-                                           SimulationSetup setup);
+std::unique_ptr<RankPart> makeSimulation(Backend backend, NeighbourMode mode,
+                                         SimulationSetup setup);
 
 // Bytes of memory one particle needs (arrays, sort scratch, grid tables), an upper estimate.
 std::size_t bytesPerParticleEstimate(NeighbourMode mode);

@@ -6,7 +6,7 @@ namespace weir {
 
 template class SphSolver<CpuExec>;
 
-std::unique_ptr<Simulation> makeCpuSimulation(NeighbourMode mode, SimulationSetup setup) {
+std::unique_ptr<RankPart> makeCpuSimulation(NeighbourMode mode, SimulationSetup setup) {
     return std::make_unique<SphSolver<CpuExec>>(mode, std::move(setup));
 }
 

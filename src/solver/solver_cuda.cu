@@ -6,7 +6,7 @@ namespace weir {
 
 template class SphSolver<CudaExec>;
 
-std::unique_ptr<Simulation> makeCudaSimulation(NeighbourMode mode, SimulationSetup setup) {
+std::unique_ptr<RankPart> makeCudaSimulation(NeighbourMode mode, SimulationSetup setup) {
     CudaExec probe;
     checkMemoryFits(Index(setup.countHere()), mode, probe.freeMemoryBytes(), "the GPU");
     return std::make_unique<SphSolver<CudaExec>>(mode, std::move(setup));

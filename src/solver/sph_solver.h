@@ -19,7 +19,7 @@
 namespace weir {
 
 template <class Exec>
-class SphSolver final : public Simulation {
+class SphSolver final : public RankPart {
    public:
     template <class T>
     using Buffer = typename Exec::template Buffer<T>;
@@ -422,7 +422,10 @@ class SphSolver final : public Simulation {
             (pos_.size() + vel_.size() + acc_.size() + sortedPos_.size() + sortedVel_.size()) *
                 sizeof(Real4) +
             (id_.size() + sortedId_.size() + boundaryStart_.size()) * sizeof(Index) +
-            boundaryPos_.size() * sizeof(Real4) + boundaryNear_.size();
+            boundaryPos_.size() * sizeof(Real4) + boundaryNear_.size() +
+            // distributed runs only: selection flags and particles staged for other ranks
+            (flags_.size() + stageId_.size() + binCounts_.size()) * sizeof(Index) +
+            (stagePos_.size() + stageVel_.size()) * sizeof(Real4);
         return bytes + (mode_ == NeighbourMode::Grid ? sparse_.bytesHeld() : 0) +
                (mode_ == NeighbourMode::Dense ? dense_.bytesHeld() : 0);
     }
@@ -608,9 +611,8 @@ class SphSolver final : public Simulation {
     // (clamped into the first and last bins).
     void histogram(int axis, double lo, double binWidth, std::vector<Index>& counts) override {
         const Index bins = Index(counts.size());
-        Buffer<Index> bin;
-        bin.resize(std::size_t(bins));
-        Index* b = bin.data();
+        binCounts_.resize(std::size_t(bins));  // kept: no allocation per rebalance check
+        Index* b = binCounts_.data();
         exec_.forEach(bins, [=] WEIR_HD(Index k) { b[k] = 0; });
         const Real4* pos = pos_.data();
         const Slab along{axis, 0, 0};
@@ -623,7 +625,7 @@ class SphSolver final : public Simulation {
             }
         });
         std::vector<Index> here(static_cast<std::size_t>(bins));
-        exec_.download(bin, here.data(), here.size());
+        exec_.download(binCounts_, here.data(), here.size());
         for (std::size_t k = 0; k < counts.size(); ++k) {
             counts[k] += here[k];
         }
@@ -788,6 +790,7 @@ class SphSolver final : public Simulation {
     Buffer<Index> flags_;                // distributed runs: selection flags and their sums
     Buffer<Real4> stagePos_, stageVel_;  // distributed runs: particles on their way to the host
     Buffer<Index> stageId_;
+    Buffer<Index> binCounts_;  // distributed runs: histogram along the decomposition axis
     Buffer<ObstacleBox> boxes_;
     Buffer<ObstacleSphere> spheres_;
     Buffer<FaultRecord> fault_;
