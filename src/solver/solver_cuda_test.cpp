@@ -75,11 +75,7 @@ TEST_P(CudaModes, TaitAndAdaptiveStepsAgreeWithCpu) {
     HostParticles a, b;
     cpu->download(a);
     gpu->download(b);
-    double sumSquares = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        sumSquares += lengthSquared(Vec3d(a.x[i] - b.x[i], a.y[i] - b.y[i], a.z[i] - b.z[i]));
-    }
-    EXPECT_LT(std::sqrt(sumSquares / double(a.size())), 0.002 * report.spacing);
+    EXPECT_LT(rmsPositionDifference(a, b), 0.002 * report.spacing);
     EXPECT_NEAR(meanDensity(a), meanDensity(b), 1e-4 * scene.restDensity);
     EXPECT_GT(maxSpeed(b), 0.3);
 }
@@ -109,11 +105,7 @@ TEST_P(CudaModes, BoundaryParticlesAgreeWithCpu) {
     HostParticles a, b;
     cpu->download(a);
     gpu->download(b);
-    double sumSquares = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        sumSquares += lengthSquared(Vec3d(a.x[i] - b.x[i], a.y[i] - b.y[i], a.z[i] - b.z[i]));
-    }
-    EXPECT_LT(std::sqrt(sumSquares / double(a.size())), 0.005 * report.spacing);
+    EXPECT_LT(rmsPositionDifference(a, b), 0.005 * report.spacing);
     EXPECT_NEAR(meanDensity(a), meanDensity(b), 1e-4 * scene.restDensity);
     EXPECT_GT(maxSpeed(b), 0.3);
 }

@@ -85,6 +85,16 @@ inline double maxPositionDifference(const HostParticles& a, const HostParticles&
     return worst;
 }
 
+// Root mean square distance between the same particle in two states.
+inline double rmsPositionDifference(const HostParticles& a, const HostParticles& b) {
+    double sumSquares = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const double dx = a.x[i] - b.x[i], dy = a.y[i] - b.y[i], dz = a.z[i] - b.z[i];
+        sumSquares += dx * dx + dy * dy + dz * dz;
+    }
+    return std::sqrt(sumSquares / double(a.size()));
+}
+
 inline double maxSpeed(const HostParticles& p) {
     double worst = 0;
     for (std::size_t i = 0; i < p.size(); ++i) {
