@@ -47,6 +47,12 @@ class CpuExec {
         }
     }
 
+    // The same; the per-thread scratch is the GPU's (CPU threads keep theirs on the stack).
+    template <class F>
+    void forEachWithScratch(Index n, int /*bytesPerThread*/, F f) const {
+        forEach(n, f);
+    }
+
     // Stable sort of (key, value) pairs by the low keyBits bits of the key (LSD radix sort).
     void sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* valuesIn, Index* valuesOut,
                    Index n, int keyBits);

@@ -2,7 +2,9 @@
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
 #include <cuda/functional>
+#include <cstdlib>
 #include <sstream>
+#include <string>
 
 #include "core/exec_cuda.cuh"
 
@@ -10,6 +12,11 @@ namespace weir {
 
 CudaExec::CudaExec() {
     WEIR_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
+    int device = 0, major = 0;
+    WEIR_CUDA_CHECK(cudaGetDevice(&device));
+    WEIR_CUDA_CHECK(cudaDeviceGetAttribute(&major, cudaDevAttrComputeCapabilityMajor, device));
+    const char* pdl = std::getenv("WEIR_PDL");
+    programmaticLaunch = major >= 9 && pdl != nullptr && std::string(pdl) == "1";
 }
 
 CudaExec::~CudaExec() {

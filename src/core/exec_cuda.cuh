@@ -66,8 +66,18 @@ class DeviceBuffer {
 
 // At least 6 blocks of 256 threads per SM, so registers are capped at 40: the density and force
 // loops, issue-bound, then run at 75% occupancy instead of 62% (bench/NOTES.md: 2-4% faster).
+//
+// Launched with programmatic dependent launch (CudaExec::programmaticLaunch), a kernel's blocks
+// may start while the kernel before it finishes: each first waits until that kernel's work is
+// complete and visible (griddepcontrol.wait, a no-op without the launch attribute), then lets
+// the next kernel start launching in turn. The launch latency between the small kernels of a
+// step overlaps the tail of the one before.
 template <class F>
 __global__ void __launch_bounds__(256, 6) forEachKernel(Index n, F f) {
+#if defined(__CUDA_ARCH__) && __CUDA_ARCH__ >= 900
+    asm volatile("griddepcontrol.wait;" ::: "memory");
+    asm volatile("griddepcontrol.launch_dependents;");
+#endif
     Index i = Index(blockIdx.x) * Index(blockDim.x) + Index(threadIdx.x);
     if (i < n) {
         f(i);
@@ -114,11 +124,35 @@ class CudaExec {
     // Runs f(i) for i in [0, n), one CUDA thread each, on this backend's stream.
     template <class F>
     void forEach(Index n, F f) const {
+        forEachWithScratch(n, 0, f);
+    }
+
+    // The same with bytesPerThread of shared memory for each thread (see PendingNeighbours):
+    // at most 48 KB a block, the limit without an opt-in.
+    template <class F>
+    void forEachWithScratch(Index n, int bytesPerThread, F f) const {
         if (n <= 0) {
             return;
         }
+        const std::size_t shared = std::size_t(bytesPerThread) * kBlockSize;
+        WEIR_REQUIRE(shared <= 48 * 1024, "a launch asked for " << shared
+                                                               << " bytes of shared memory");
         unsigned blocks = unsigned((std::int64_t(n) + kBlockSize - 1) / kBlockSize);
-        forEachKernel<<<blocks, kBlockSize, 0, stream_>>>(n, f);
+        if (programmaticLaunch) {
+            cudaLaunchConfig_t config{};
+            config.gridDim = dim3(blocks);
+            config.blockDim = dim3(kBlockSize);
+            config.dynamicSmemBytes = shared;
+            config.stream = stream_;
+            cudaLaunchAttribute attribute{};
+            attribute.id = cudaLaunchAttributeProgrammaticStreamSerialization;
+            attribute.val.programmaticStreamSerializationAllowed = 1;
+            config.attrs = &attribute;
+            config.numAttrs = 1;
+            WEIR_CUDA_CHECK(cudaLaunchKernelEx(&config, forEachKernel<F>, n, f));
+        } else {
+            forEachKernel<<<blocks, kBlockSize, shared, stream_>>>(n, f);
+        }
         WEIR_CUDA_CHECK(cudaGetLastError());
 #ifndef NDEBUG
         cudaStreamCaptureStatus capturing = cudaStreamCaptureStatusNone;
@@ -223,6 +257,10 @@ class CudaExec {
         graph.reset(instance);
     }
     void launch(const Graph& graph) { WEIR_CUDA_CHECK(cudaGraphLaunch(graph.get(), stream_)); }
+
+    // Programmatic dependent launch of forEach kernels (see forEachKernel); Hopper and later.
+    // WEIR_PDL=1 turns it on (a speed experiment).
+    bool programmaticLaunch = false;
 
     void stageBegin(const char* stage);
     void stageEnd(const char* stage);

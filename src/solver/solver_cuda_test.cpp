@@ -2,6 +2,9 @@
 // Skipped where no GPU is visible (CI); run on the device machine before GPU work is done.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <string>
+
 #include "solver/solver_test_support.h"
 
 namespace weir {
@@ -143,6 +146,33 @@ TEST(CudaSolver, GraphReplayMatchesSingleSteps) {
     }
     ASSERT_NE(graphed->fault().code, 0);
     EXPECT_EQ(graphed->fault().step, stepped->fault().step);
+}
+
+// The force pass's neighbour list (PendingNeighbours, in shared memory on the GPU) against
+// evaluating each neighbour where it is found: the same pairs in the same order, so the same
+// state to rounding, with lists that overflow on every particle (4) and the default.
+TEST(CudaSolver, NeighbourListMatchesImmediateEvaluation) {
+    SKIP_WITHOUT_GPU();
+    Scene scene = smallDamBreak(4000);
+    SetupReport report;
+    const char* saved = std::getenv("WEIR_NEIGHBOUR_LIST");
+    const std::string restore = saved != nullptr ? saved : "";
+    auto run = [&](const char* capacity) {
+        setenv("WEIR_NEIGHBOUR_LIST", capacity, 1);
+        auto sim = start(scene, Backend::Cuda, NeighbourMode::Dense, &report);
+        HostParticles state = stateAfter(*sim, 100);
+        EXPECT_EQ(sim->fault().code, 0) << "list of " << capacity;
+        return state;
+    };
+    const HostParticles immediate = run("0"), tiny = run("4"), standard = run("32");
+    if (saved != nullptr) {
+        setenv("WEIR_NEIGHBOUR_LIST", restore.c_str(), 1);
+    } else {
+        unsetenv("WEIR_NEIGHBOUR_LIST");
+    }
+    EXPECT_LT(maxPositionDifference(immediate, tiny), 1e-4 * report.spacing);
+    EXPECT_LT(maxPositionDifference(immediate, standard), 1e-4 * report.spacing);
+    EXPECT_GT(maxSpeed(standard), 0.3);
 }
 
 TEST(CudaSolver, BlowUpIsDetectedOnTheGpu) {

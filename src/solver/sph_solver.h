@@ -335,9 +335,10 @@ class SphSolver final : public RankPart {
         const ParticleView pv = view();
         const SphParams params = params_;
         const StepClock* clock = clock_.data();
-        exec_.forEach(n_, [=] WEIR_HD(Index i) {
+        const int list = pendingCapacity_;
+        exec_.forEachWithScratch(n_, pendingNeighbourBytes(list), [=] WEIR_HD(Index i) {
             if (clock->dt != Real(0) && !isGhost(pv.pos[i])) {
-                accelerationAt(i, pv, nb, params);
+                accelerationAt(i, pv, nb, params, list);
             }
         });
         exec_.stageEnd("force");
@@ -354,8 +355,10 @@ class SphSolver final : public RankPart {
         FaultRecord* fault = fault_.data();
         StepClock* clock = clock_.data();
         Real4 *newPos = sortedPos_.data(), *newVel = sortedVel_.data();
-        exec_.forEach(n_, [=] WEIR_HD(Index i) {
-            accelerateAndIntegrateAt(i, pv, nb, params, obstacles, fault, clock, newPos, newVel);
+        const int list = pendingCapacity_;
+        exec_.forEachWithScratch(n_, pendingNeighbourBytes(list), [=] WEIR_HD(Index i) {
+            accelerateAndIntegrateAt(i, pv, nb, params, obstacles, fault, clock, newPos, newVel,
+                                     list);
         });
         pos_.swap(sortedPos_);
         vel_.swap(sortedVel_);
@@ -769,6 +772,19 @@ class SphSolver final : public RankPart {
         return std::max(1, denseCellsPerRadius(setup.grid, setup.particleCount()));
     }
 
+    // Neighbours the force pass collects before evaluating them (PendingNeighbours): on the GPU
+    // only, where it spares the warp the pair force of its lanes' misses. WEIR_NEIGHBOUR_LIST
+    // overrides it for speed experiments (0: evaluate where found; at most 48).
+    static int pendingCapacity() {
+        if constexpr (!Exec::isDevice) {
+            return 0;
+        }
+        const char* text = std::getenv("WEIR_NEIGHBOUR_LIST");
+        const int wanted = text != nullptr ? std::atoi(text) : kDefaultPendingCapacity;
+        return std::clamp(wanted, 0, 48);
+    }
+    static constexpr int kDefaultPendingCapacity = 32;
+
     static constexpr double kNoTarget = 1e300;
     mutable Exec exec_;  // mutable: reading the device clock back is not a change
     NeighbourMode mode_;
@@ -802,6 +818,7 @@ class SphSolver final : public RankPart {
     typename Exec::Graph graph_;
     int graphParity_ = 0;
     StageTimes times_;
+    int pendingCapacity_ = pendingCapacity();
 };
 
 }  // namespace weir
