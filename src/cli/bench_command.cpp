@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "core/check.h"
 #include "core/exec_cpu.h"
+#include "grid/cell_id.h"
 #include "grid/dense_grid.h"
 #include "io/atomic_file.h"
 #include "scene/scene.h"
@@ -233,6 +234,8 @@ int benchCommand(const BenchOptions& options, SpriteDrawTimer* spriteTimer) {
                 std::isnan(neighbours) ? nlohmann::json() : nlohmann::json(neighbours);
             run["settled"] = !fromLattice;
             run["gridCells"] = {setup.grid.dims[0], setup.grid.dims[1], setup.grid.dims[2]};
+            // The width of the grid columns' cell ids: 64 past 1024 cells on some axis.
+            run["cellIdBits"] = needsWideCellIds(setup.grid) ? 64 : 32;
             run["columns"] = nlohmann::json::object();
             // The paper's fifth row: the fluid drawn as point sprites (the same for every column).
             if (spriteTimer != nullptr && !fromLattice) {

@@ -155,6 +155,10 @@ TEST_F(Cli, InfoNamesTheCpu) {
     EXPECT_TRUE(contains(info.output, "OpenMP threads"));
     EXPECT_TRUE(contains(info.output, "gpu: "));
     EXPECT_TRUE(contains(info.output, "dam_break"));
+    EXPECT_TRUE(contains(info.output,
+                         "grid cell ids: 32-bit (10 bits per axis) up to 1024 cells "
+                         "per axis, 64-bit (21 bits per axis) past that"))
+        << info.output;
 }
 
 // --- runs ---------------------------------------------------------------------------------
@@ -411,8 +415,9 @@ TEST_F(Cli, EveryNeighbourSearchGivesTheSameFluid) {
     EXPECT_LT(meanHeight(brute), 0.06 - 1e-3);  // and the fluid did fall
 }
 
-TEST_F(Cli, LongContainerRunsOnTheDenseTableOnly) {
-    // 1025 cells of h = 1 cm along x: past the paper's 10-bit cell ids.
+TEST_F(Cli, LongContainerRunsOnTheGridWithWideCellIds) {
+    // 1025 cells of h = 1 cm along x: past the paper's 10-bit cell ids, where the grid used to
+    // refuse; it now switches to 64-bit ids and says so.
     writeFile("long.json", R"({
         "container": {"min": [0, 0, 0], "max": [10.25, 0.1, 0.1]},
         "blocks": [{"min": [0, 0, 0], "max": [0.04, 0.04, 0.04]}],
@@ -420,15 +425,39 @@ TEST_F(Cli, LongContainerRunsOnTheDenseTableOnly) {
     })");
     RunResult paper = weir("run long.json" + std::string(kCpu) + " --frames 1 --neighbours grid" +
                            " --out paper");
-    EXPECT_EQ(paper.exitCode, 1) << paper.output;
-    EXPECT_TRUE(contains(paper.output, "1025"));
-    EXPECT_TRUE(contains(paper.output, "1024"));
-    EXPECT_FALSE(fs::exists(path("paper/" + frameName(0, "vtu"))));
+    ASSERT_EQ(paper.exitCode, 0) << paper.output;
+    EXPECT_TRUE(contains(paper.output, "grid neighbours")) << paper.output;
+    EXPECT_TRUE(contains(paper.output, "cell ids: 64-bit (21 bits per axis)")) << paper.output;
+    const HostParticles onGrid = readVtu(path("paper/" + frameName(1, "vtu")));
+    EXPECT_EQ(onGrid.size(), 8u * 8u * 8u);
+
+    // 1024 cells still fit the paper's 32-bit id: no switch, no line.
+    writeFile("fits.json", R"({
+        "container": {"min": [0, 0, 0], "max": [10.24, 0.1, 0.1]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.04, 0.04, 0.04]}],
+        "particles": {"spacing": 0.005}
+    })");
+    RunResult fits =
+        weir("run fits.json" + std::string(kCpu) + " --frames 1 --neighbours grid --out fits");
+    ASSERT_EQ(fits.exitCode, 0) << fits.output;
+    EXPECT_FALSE(contains(fits.output, "64-bit")) << fits.output;
 
     RunResult automatic = weir("run long.json" + std::string(kCpu) + " --frames 1 --out auto");
     ASSERT_EQ(automatic.exitCode, 0) << automatic.output;
     EXPECT_TRUE(contains(automatic.output, "dense neighbours"));
-    EXPECT_EQ(readVtu(path("auto/" + frameName(1, "vtu"))).size(), 8u * 8u * 8u);
+    EXPECT_FALSE(contains(automatic.output, "cell ids:")) << automatic.output;
+    const HostParticles onDense = readVtu(path("auto/" + frameName(1, "vtu")));
+    ASSERT_EQ(onDense.size(), 8u * 8u * 8u);
+    // The same neighbours, so the same fluid up to summation order; and it fell.
+    double worst = 0, fell = 0;
+    for (std::size_t i = 0; i < onDense.size(); ++i) {
+        worst = std::max({worst, std::abs(double(onGrid.x[i]) - onDense.x[i]),
+                          std::abs(double(onGrid.y[i]) - onDense.y[i]),
+                          std::abs(double(onGrid.z[i]) - onDense.z[i])});
+        fell = std::max(fell, 0.04 - double(onGrid.y[i]));
+    }
+    EXPECT_LT(worst, 1e-4 * 0.005);
+    EXPECT_GT(fell, 0.0);
 }
 
 TEST_F(Cli, BenchTimesEveryStageOfEveryColumn) {

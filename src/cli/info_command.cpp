@@ -4,6 +4,7 @@
 #include "cli/commands.h"
 #include "core/backend.h"
 #include "core/config.h"
+#include "grid/cell_id.h"
 #include "scene/scene.h"
 
 namespace weir {
@@ -19,6 +20,9 @@ int infoCommand() {
     std::cout << "cpu: " << describeBackend(Backend::Cpu) << "\n";
     std::cout << "gpu: " << describeBackend(Backend::Cuda) << "\n";
     std::cout << "auto backend picks: " << backendName(parseBackend("auto")) << "\n";
+    std::cout << "grid cell ids: 32-bit (" << kCellBitsPerAxis << " bits per axis) up to "
+              << kMaxCellsPerAxis << " cells per axis, 64-bit ("
+              << CellIdLayout<WideCellKey>::bitsPerAxis << " bits per axis) past that\n";
     std::cout << "built-in scenes:";
     for (const std::string& name : builtinSceneNames()) {
         std::cout << " " << name;

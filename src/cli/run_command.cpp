@@ -6,6 +6,7 @@
 #include "cli/progress.h"
 #include "cluster/distributed_simulation.h"
 #include "core/check.h"
+#include "grid/cell_id.h"
 #include "io/frame_writer.h"
 #include "scene/scene.h"
 #include "scene/setup.h"
@@ -73,6 +74,8 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         if (observer != nullptr) {
             observer->start(scene, report, outDir);
         }
+        const bool wideCellIds = mode == NeighbourMode::Grid && needsWideCellIds(setup.grid);
+        const std::string cellIds = cellIdDescription(setup.grid);
         std::unique_ptr<Simulation> sim;
         DistributedSimulation* cluster = nullptr;
         if (launchedByMpi()) {
@@ -89,6 +92,11 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             << (sim->params().adaptiveTimeStep ? " (adaptive)" : "") << ", about "
             << report.stepsPerFrame << " steps per frame, " << frames << " frames to " << outDir
             << "/\n";
+        if (wideCellIds) {
+            log << "weir: cell ids: " << cellIds
+                << ", as the grid has more than the 1024 cells on an axis that the paper's "
+                   "32-bit id holds\n";
+        }
         if (cluster != nullptr) {
             const Decomposition& d = cluster->decomposition();
             log << "weir: " << d.ranks() << " ranks, slabs along "

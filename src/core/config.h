@@ -22,5 +22,7 @@ using Real = float;
 using Index = std::int32_t;
 // Cell ids as in paper §6.2: 2 unused bits, then Y, Z, X at 10 bits each.
 using CellKey = std::uint32_t;
+// Cell ids of grids past 1024 cells on an axis: the same order at 21 bits each.
+using WideCellKey = std::uint64_t;
 
 }  // namespace weir

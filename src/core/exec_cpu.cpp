@@ -8,24 +8,29 @@
 
 namespace weir {
 
-void CpuExec::sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* valuesIn,
-                        Index* valuesOut, Index n, int keyBits) {
+namespace {
+
+// LSD radix sort of (key, value) pairs on the low keyBits bits, 8 bits a pass, stable.
+template <class Key>
+void radixSortPairs(const Key* keysIn, Key* keysOut, const Index* valuesIn, Index* valuesOut,
+                    Index n, int keyBits, std::vector<Key>& keysScratch,
+                    std::vector<Index>& valuesScratch, std::vector<std::size_t>& histogram) {
     constexpr int kDigitBits = 8;
     constexpr int kBuckets = 1 << kDigitBits;
     const int passes = std::max(1, (keyBits + kDigitBits - 1) / kDigitBits);
-    sortKeysScratch_.resize(n);
-    sortValuesScratch_.resize(n);
+    keysScratch.resize(n);
+    valuesScratch.resize(n);
     // Ping-pong so that the last pass lands in the output arrays.
-    CellKey* keyBuf[2] = {keysOut, sortKeysScratch_.data()};
-    Index* valBuf[2] = {valuesOut, sortValuesScratch_.data()};
+    Key* keyBuf[2] = {keysOut, keysScratch.data()};
+    Index* valBuf[2] = {valuesOut, valuesScratch.data()};
     int dst = passes % 2 == 0 ? 1 : 0;  // buffer the first pass writes into
-    const CellKey* srcKeys = keysIn;
+    const Key* srcKeys = keysIn;
     const Index* srcValues = valuesIn;
     const int threads = omp_get_max_threads();
-    histogram_.assign(std::size_t(threads) * kBuckets, 0);
+    histogram.assign(std::size_t(threads) * kBuckets, 0);
     for (int pass = 0; pass < passes; ++pass) {
         const int shift = pass * kDigitBits;
-        CellKey* outKeys = keyBuf[dst];
+        Key* outKeys = keyBuf[dst];
         Index* outValues = valBuf[dst];
 #pragma omp parallel num_threads(threads)
         {
@@ -33,7 +38,7 @@ void CpuExec::sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* va
             const int nt = omp_get_num_threads();
             const Index begin = Index(std::int64_t(n) * t / nt);
             const Index end = Index(std::int64_t(n) * (t + 1) / nt);
-            std::size_t* hist = &histogram_[std::size_t(t) * kBuckets];
+            std::size_t* hist = &histogram[std::size_t(t) * kBuckets];
             std::fill(hist, hist + kBuckets, 0);
             for (Index i = begin; i < end; ++i) {
                 ++hist[(srcKeys[i] >> shift) & (kBuckets - 1)];
@@ -45,8 +50,8 @@ void CpuExec::sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* va
                 std::size_t sum = 0;
                 for (int d = 0; d < kBuckets; ++d) {
                     for (int tt = 0; tt < nt; ++tt) {
-                        std::size_t c = histogram_[std::size_t(tt) * kBuckets + d];
-                        histogram_[std::size_t(tt) * kBuckets + d] = sum;
+                        std::size_t c = histogram[std::size_t(tt) * kBuckets + d];
+                        histogram[std::size_t(tt) * kBuckets + d] = sum;
                         sum += c;
                     }
                 }
@@ -61,6 +66,20 @@ void CpuExec::sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* va
         srcValues = outValues;
         dst ^= 1;
     }
+}
+
+}  // namespace
+
+void CpuExec::sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* valuesIn,
+                        Index* valuesOut, Index n, int keyBits) {
+    radixSortPairs(keysIn, keysOut, valuesIn, valuesOut, n, keyBits, sortKeysScratch_,
+                   sortValuesScratch_, histogram_);
+}
+
+void CpuExec::sortPairs(const WideCellKey* keysIn, WideCellKey* keysOut, const Index* valuesIn,
+                        Index* valuesOut, Index n, int keyBits) {
+    radixSortPairs(keysIn, keysOut, valuesIn, valuesOut, n, keyBits, sortWideKeysScratch_,
+                   sortValuesScratch_, histogram_);
 }
 
 void CpuExec::inclusiveScan(const Index* in, Index* out, Index n) {

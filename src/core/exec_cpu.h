@@ -56,6 +56,8 @@ class CpuExec {
     // Stable sort of (key, value) pairs by the low keyBits bits of the key (LSD radix sort).
     void sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* valuesIn, Index* valuesOut,
                    Index n, int keyBits);
+    void sortPairs(const WideCellKey* keysIn, WideCellKey* keysOut, const Index* valuesIn,
+                   Index* valuesOut, Index n, int keyBits);
     // out[i] = in[0] + ... + in[i]; in and out may alias.
     void inclusiveScan(const Index* in, Index* out, Index n);
     // data[i] = max(data[0], ..., data[i]), in place.
@@ -107,6 +109,7 @@ class CpuExec {
 
    private:
     std::vector<CellKey> sortKeysScratch_;
+    std::vector<WideCellKey> sortWideKeysScratch_;
     std::vector<Index> sortValuesScratch_;
     std::vector<std::size_t> histogram_;
     std::chrono::steady_clock::time_point stageStart_;

@@ -41,6 +41,20 @@ void CudaExec::sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* v
                                                     valuesIn, valuesOut, n, 0, keyBits, stream_));
 }
 
+// The 64-bit cell ids of grids past 1024 cells per axis: only keyBits bits, so fewer passes.
+void CudaExec::sortPairs(const WideCellKey* keysIn, WideCellKey* keysOut, const Index* valuesIn,
+                         Index* valuesOut, Index n, int keyBits) {
+    std::size_t bytes = 0;
+    WEIR_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keysIn, keysOut, valuesIn,
+                                                    valuesOut, n, 0, keyBits, stream_));
+    if (sortTemp_.size() < bytes) {
+        sortTemp_.resize(bytes);
+    }
+    bytes = sortTemp_.size();
+    WEIR_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(sortTemp_.data(), bytes, keysIn, keysOut,
+                                                    valuesIn, valuesOut, n, 0, keyBits, stream_));
+}
+
 void CudaExec::inclusiveScan(const Index* in, Index* out, Index n) {
     std::size_t bytes = 0;
     WEIR_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, bytes, in, out, n, stream_));

@@ -166,6 +166,8 @@ class CudaExec {
     // Stable (key, value) radix sort on the low keyBits bits, by CUB.
     void sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* valuesIn, Index* valuesOut,
                    Index n, int keyBits);
+    void sortPairs(const WideCellKey* keysIn, WideCellKey* keysOut, const Index* valuesIn,
+                   Index* valuesOut, Index n, int keyBits);
     // Inclusive prefix sum by CUB; in and out may alias.
     void inclusiveScan(const Index* in, Index* out, Index n);
     // data[i] = max(data[0], ..., data[i]), in place, by CUB.

@@ -1,4 +1,4 @@
-// Grid sizing with the paper's 10-bit-per-axis limit.
+// Grid sizing, and the choice between the paper's 32-bit cell id and the 64-bit one.
 #include "grid/cell_id.h"
 
 #include <algorithm>
@@ -10,24 +10,43 @@ namespace weir {
 
 namespace {
 
+const char* limitReason(int maxCellsPerAxis) {
+    if (maxCellsPerAxis == kMaxCellsPerAxis) {
+        return " that the 32-bit cell id of paper §6.2 holds";
+    }
+    if (maxCellsPerAxis == kMaxWideCellsPerAxis) {
+        return " that the 64-bit cell id holds";
+    }
+    return " allowed";
+}
+
 void checkAxes(const int dims[3], double cellSize, int maxCellsPerAxis) {
     const char* axisName = "xyz";
     for (int a = 0; a < 3; ++a) {
         WEIR_REQUIRE(dims[a] <= maxCellsPerAxis,
                      "the container needs " << dims[a] << " grid cells along " << axisName[a]
                                             << " (cells of " << cellSize << " m), more than the "
-                                            << maxCellsPerAxis
-                                            << (maxCellsPerAxis == kMaxCellsPerAxis
-                                                    ? " that the 32-bit cell id of paper §6.2 holds"
-                                                    : " allowed")
+                                            << maxCellsPerAxis << limitReason(maxCellsPerAxis)
                                             << "; use fewer particles or a smaller container");
     }
 }
 
 }  // namespace
 
-void checkPaperCellIdRange(const GridSpec& spec) {
-    checkAxes(spec.dims, double(spec.cellSize), kMaxCellsPerAxis);
+bool needsWideCellIds(const GridSpec& spec) {
+    return std::max({spec.dims[0], spec.dims[1], spec.dims[2]}) > kMaxCellsPerAxis;
+}
+
+std::string cellIdDescription(const GridSpec& spec) {
+    return needsWideCellIds(spec)
+               ? "64-bit (" + std::to_string(CellIdLayout<WideCellKey>::bitsPerAxis) +
+                     " bits per axis)"
+               : "32-bit (" + std::to_string(CellIdLayout<CellKey>::bitsPerAxis) +
+                     " bits per axis)";
+}
+
+void checkCellIdRange(const GridSpec& spec, int maxCellsPerAxis) {
+    checkAxes(spec.dims, double(spec.cellSize), maxCellsPerAxis);
 }
 
 GridSpec makeGridSpec(const Vec3d& boxMin, const Vec3d& boxMax, double cellSize,

@@ -1,32 +1,51 @@
 // Cell ids of paper §6.2: 32 bits, 2 unused, then Y, Z, X at 10 bits each; grids up to 1024^3.
+// Past that, the same layout in 64 bits at 21 bits per axis (1 unused bit).
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <string>
+#include <type_traits>
 
 #include "core/config.h"
 #include "core/vec3.h"
 
 namespace weir {
 
-constexpr int kCellBitsPerAxis = 10;
-constexpr int kMaxCellsPerAxis = 1 << kCellBitsPerAxis;  // 1024
-constexpr int kCellKeyBits = 3 * kCellBitsPerAxis;       // 30 used bits
-constexpr CellKey kCellAxisMask = kMaxCellsPerAxis - 1;
+// The bit layout of a cell id of type Key.
+template <class Key>
+struct CellIdLayout {
+    static_assert(std::is_same_v<Key, std::uint32_t> || std::is_same_v<Key, std::uint64_t>,
+                  "cell ids are std::uint32_t (the paper's) or std::uint64_t");
+    static constexpr int bitsPerAxis = sizeof(Key) == 4 ? 10 : 21;
+    static constexpr int maxCellsPerAxis = 1 << bitsPerAxis;
+    static constexpr int keyBits = 3 * bitsPerAxis;  // used bits: 30 or 63
+    static constexpr Key axisMask = Key(maxCellsPerAxis - 1);
+};
+
+constexpr int kCellBitsPerAxis = CellIdLayout<CellKey>::bitsPerAxis;              // 10
+constexpr int kMaxCellsPerAxis = CellIdLayout<CellKey>::maxCellsPerAxis;          // 1024
+constexpr int kCellKeyBits = CellIdLayout<CellKey>::keyBits;                      // 30 used bits
+constexpr int kMaxWideCellsPerAxis = CellIdLayout<WideCellKey>::maxCellsPerAxis;  // 2^21
 
 struct CellCoord {
     int x = 0, y = 0, z = 0;
 };
 
-// Y occupies bits 20..29, Z bits 10..19 and X bits 0..9, so cells next to each other along X
-// have consecutive ids: a row of three neighbour cells is one run of the sorted particles.
-WEIR_HD constexpr CellKey encodeCell(int x, int y, int z) {
-    return (CellKey(y) << (2 * kCellBitsPerAxis)) | (CellKey(z) << kCellBitsPerAxis) | CellKey(x);
+// Y occupies the top used bits, then Z, then X in the lowest, so cells next to each other along
+// X have consecutive ids: a row of three neighbour cells is one run of the sorted particles.
+template <class Key = CellKey>
+WEIR_HD constexpr Key encodeCell(int x, int y, int z) {
+    constexpr int bits = CellIdLayout<Key>::bitsPerAxis;
+    return (Key(y) << (2 * bits)) | (Key(z) << bits) | Key(x);
 }
 
-WEIR_HD constexpr CellCoord decodeCell(CellKey key) {
-    return {int(key & kCellAxisMask), int((key >> (2 * kCellBitsPerAxis)) & kCellAxisMask),
-            int((key >> kCellBitsPerAxis) & kCellAxisMask)};
+template <class Key>
+WEIR_HD constexpr CellCoord decodeCell(Key key) {
+    constexpr int bits = CellIdLayout<Key>::bitsPerAxis;
+    constexpr Key mask = CellIdLayout<Key>::axisMask;
+    return {int(key & mask), int((key >> (2 * bits)) & mask), int((key >> bits) & mask)};
 }
 
 // The uniform grid over the container: origin, cell edge (>= smoothing radius) and size.
@@ -45,23 +64,36 @@ struct GridSpec {
         return {axis(px, origin.x, dims[0]), axis(py, origin.y, dims[1]),
                 axis(pz, origin.z, dims[2])};
     }
-    WEIR_HD CellKey keyOf(Real px, Real py, Real pz) const {
+    template <class Key = CellKey>
+    WEIR_HD Key keyOf(Real px, Real py, Real pz) const {
         CellCoord c = cellOf(px, py, pz);
-        return encodeCell(c.x, c.y, c.z);
+        return encodeCell<Key>(c.x, c.y, c.z);
     }
 };
 
 // Builds the grid spec for a box; throws SimulationError if an axis needs more than
-// maxCellsPerAxis cells (by default the 1024 of the paper's cell id).
+// maxCellsPerAxis cells (by default the 2^21 that the 64-bit cell id holds).
 GridSpec makeGridSpec(const Vec3d& boxMin, const Vec3d& boxMax, double cellSize,
-                      int maxCellsPerAxis = kMaxCellsPerAxis);
+                      int maxCellsPerAxis = kMaxWideCellsPerAxis);
 
 // The cells of `spec` that cover [lo, hi) along `axis` (at least one; infinite bounds reach the
 // grid's ends), in the same places: a distributed run's rank needs only its slab's cells.
 GridSpec sliceOf(const GridSpec& spec, int axis, double lo, double hi);
 
-// Throws SimulationError if the grid does not fit the paper's 10-bit-per-axis cell ids.
-void checkPaperCellIdRange(const GridSpec& spec);
+// Whether some axis has more cells than the paper's 32-bit id holds (1024): the sparse grid then
+// uses 64-bit ids.
+bool needsWideCellIds(const GridSpec& spec);
+
+// "32-bit (10 bits per axis)" or "64-bit (21 bits per axis)": the cell id the sparse grid uses.
+std::string cellIdDescription(const GridSpec& spec);
+
+// Bytes of one cell id of the sparse grid over `spec`: 4, or 8 past 1024 cells on some axis.
+inline std::size_t cellIdBytesFor(const GridSpec& spec) {
+    return needsWideCellIds(spec) ? sizeof(WideCellKey) : sizeof(CellKey);
+}
+
+// Throws SimulationError if the grid does not fit cell ids of maxCellsPerAxis cells per axis.
+void checkCellIdRange(const GridSpec& spec, int maxCellsPerAxis);
 
 // Cells in the whole grid.
 inline std::uint64_t totalCells(const GridSpec& spec) {

@@ -16,7 +16,8 @@ void ensureCapacity(Buffer& buffer, std::size_t n) {
     }
 }
 
-template <class Exec>
+// Key: the cell id type, CellKey (the paper's 32 bits) or WideCellKey.
+template <class Exec, class Key = CellKey>
 class CellSort {
    public:
     template <class T>
@@ -33,7 +34,7 @@ class CellSort {
         }
         n_ = n;
     }
-    CellKey* keys() { return keys_.data(); }
+    Key* keys() { return keys_.data(); }
 
     // Sorts (key, index) by the low keyBits bits of the key, stably.
     void sort(Exec& exec, int keyBits) {
@@ -43,19 +44,19 @@ class CellSort {
                        keyBits);
     }
 
-    const CellKey* sortedKeys() const { return sortedKeys_.data(); }
+    const Key* sortedKeys() const { return sortedKeys_.data(); }
     // permutation()[i] is the old index of the particle that is i-th in cell order.
     const Index* permutation() const { return sortedOrder_.data(); }
-    const Buffer<CellKey>& sortedKeyBuffer() const { return sortedKeys_; }
+    const Buffer<Key>& sortedKeyBuffer() const { return sortedKeys_; }
     Index count() const { return n_; }
     std::size_t bytesHeld() const {
-        return (keys_.size() + sortedKeys_.size()) * sizeof(CellKey) +
+        return (keys_.size() + sortedKeys_.size()) * sizeof(Key) +
                (order_.size() + sortedOrder_.size()) * sizeof(Index);
     }
 
    private:
     Index n_ = 0;
-    Buffer<CellKey> keys_, sortedKeys_;
+    Buffer<Key> keys_, sortedKeys_;
     Buffer<Index> order_, sortedOrder_;
 };
 

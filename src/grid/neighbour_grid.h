@@ -4,9 +4,11 @@
 // (3) the cell table (id, first particle, count) by a prefix sum over "new cell starts here"
 // flags; (4) the cell-neighbour table, 27 entries per occupied cell (itself and its 26
 // neighbours, -1 where empty), by a parallel binary search over the sorted cell ids.
+// Cell ids are the paper's 32 bits where every axis has at most 1024 cells, else 64 bits.
 #pragma once
 
 #include <algorithm>
+#include <variant>
 
 #include "core/config.h"
 #include "grid/cell_id.h"
@@ -22,7 +24,8 @@ WEIR_HD constexpr int neighbourSlot(int dx, int dy, int dz) {
     return ((dy + 1) * 3 + (dz + 1)) * 3 + (dx + 1);
 }
 
-// What the density and force stages need of the grid, passed by value to kernels.
+// What the density and force stages need of the grid, passed by value to kernels. It holds no
+// cell ids: the stages are the same whichever width the grid uses.
 struct GridNeighbours {
     const Index* particleCell;    // cell-table index of each (sorted) particle
     const Index* neighbourTable;  // kNeighbourCells entries per cell, -1 where empty
@@ -62,7 +65,8 @@ struct BruteNeighbours {
 };
 
 // Lower bound of key in sorted keys[0, n).
-WEIR_HD inline Index lowerBound(const CellKey* keys, Index n, CellKey key) {
+template <class Key>
+WEIR_HD inline Index lowerBound(const Key* keys, Index n, Key key) {
     Index lo = 0, hi = n;
     while (lo < hi) {
         Index mid = lo + (hi - lo) / 2;
@@ -75,14 +79,18 @@ WEIR_HD inline Index lowerBound(const CellKey* keys, Index n, CellKey key) {
     return lo;
 }
 
-template <class Exec>
-class NeighbourGrid {
+// The grid with cell ids of type Key: CellKey (paper §6.2) or WideCellKey.
+template <class Exec, class Key>
+class KeyedNeighbourGrid {
    public:
     template <class T>
     using Buffer = typename Exec::template Buffer<T>;
+    using Layout = CellIdLayout<Key>;
 
-    // Throws SimulationError if the grid needs more than the paper's 1024 cells on an axis.
-    explicit NeighbourGrid(const GridSpec& spec) : spec_(spec) { checkPaperCellIdRange(spec); }
+    // Throws SimulationError if an axis has more cells than a Key id holds.
+    explicit KeyedNeighbourGrid(const GridSpec& spec) : spec_(spec) {
+        checkCellIdRange(spec, Layout::maxCellsPerAxis);
+    }
 
     // Sorts particles by cell and builds both tables. Afterwards permutation()[i] is the old index
     // of the particle that is i-th in cell order; the caller reorders its particle data by it.
@@ -96,11 +104,11 @@ class NeighbourGrid {
         }
         // Step 1: the cell id of every particle (paper Figure 3 layout).
         GridSpec spec = spec_;
-        CellKey* keys = sort_.keys();
-        exec.forEach(n,
-                     [=] WEIR_HD(Index i) { keys[i] = spec.keyOf(pos[i].x, pos[i].y, pos[i].z); });
+        Key* keys = sort_.keys();
+        exec.forEach(
+            n, [=] WEIR_HD(Index i) { keys[i] = spec.keyOf<Key>(pos[i].x, pos[i].y, pos[i].z); });
         // Step 2: radix sort by cell id.
-        sort_.sort(exec, kCellKeyBits);
+        sort_.sort(exec, sortKeyBits());
         buildCellTable(exec);
         buildNeighbourTable(exec);
     }
@@ -109,7 +117,7 @@ class NeighbourGrid {
     // id, first particle and count.
     void buildCellTable(Exec& exec) {
         const Index n = n_;
-        const CellKey* keys = sort_.sortedKeys();
+        const Key* keys = sort_.sortedKeys();
         Index* particleCell = particleCell_.data();
         exec.forEach(n, [=] WEIR_HD(Index i) {
             particleCell[i] = (i == 0 || keys[i] != keys[i - 1]) ? 1 : 0;
@@ -119,7 +127,7 @@ class NeighbourGrid {
         ensureCapacity(cellKeys_, numCells_);
         ensureCapacity(cellStart_, numCells_);
         ensureCapacity(cellCount_, numCells_);
-        CellKey* cellKeys = cellKeys_.data();
+        Key* cellKeys = cellKeys_.data();
         Index* cellStart = cellStart_.data();
         Index* cellCount = cellCount_.data();
         exec.forEach(n, [=] WEIR_HD(Index i) {
@@ -144,7 +152,7 @@ class NeighbourGrid {
     void buildNeighbourTable(Exec& exec) {
         const Index cells = numCells_;
         ensureCapacity(neighbourTable_, std::size_t(cells) * kNeighbourCells);
-        const CellKey* cellKeys = cellKeys_.data();
+        const Key* cellKeys = cellKeys_.data();
         Index* table = neighbourTable_.data();
         const int nx = spec_.dims[0], ny = spec_.dims[1], nz = spec_.dims[2];
         exec.forEach(cells, [=] WEIR_HD(Index c) {
@@ -156,7 +164,7 @@ class NeighbourGrid {
                         int x = home.x + dx, y = home.y + dy, z = home.z + dz;
                         Index found = -1;
                         if (x >= 0 && y >= 0 && z >= 0 && x < nx && y < ny && z < nz) {
-                            CellKey key = encodeCell(x, y, z);
+                            Key key = encodeCell<Key>(x, y, z);
                             Index at = lowerBound(cellKeys, cells, key);
                             if (at < cells && cellKeys[at] == key) {
                                 found = at;
@@ -178,7 +186,7 @@ class NeighbourGrid {
     Index numParticles() const { return n_; }
 
     // Read access for tests and statistics.
-    const Buffer<CellKey>& cellKeys() const { return cellKeys_; }
+    const Buffer<Key>& cellKeys() const { return cellKeys_; }
     const Buffer<Index>& cellStart() const { return cellStart_; }
     const Buffer<Index>& cellCount() const { return cellCount_; }
     const Buffer<Index>& neighbourTable() const { return neighbourTable_; }
@@ -190,16 +198,76 @@ class NeighbourGrid {
                (particleCell_.size() + cellStart_.size() + cellCount_.size() +
                 neighbourTable_.size()) *
                    sizeof(Index) +
-               cellKeys_.size() * sizeof(CellKey);
+               cellKeys_.size() * sizeof(Key);
+    }
+
+    // Bits the radix sort orders by. The paper's id sorts on all 30; the 64-bit one stops above
+    // Y's largest value, its top field: up to 64 cells along Y that is 48 bits, 6 passes, not 8.
+    int sortKeyBits() const {
+        if constexpr (sizeof(Key) == sizeof(CellKey)) {
+            return Layout::keyBits;
+        } else {
+            return 2 * Layout::bitsPerAxis + bitsFor(std::uint64_t(spec_.dims[1]));
+        }
     }
 
    private:
     GridSpec spec_;
     Index n_ = 0;
     Index numCells_ = 0;
-    CellSort<Exec> sort_;
-    Buffer<CellKey> cellKeys_;
+    CellSort<Exec, Key> sort_;
+    Buffer<Key> cellKeys_;
     Buffer<Index> particleCell_, cellStart_, cellCount_, neighbourTable_;
+};
+
+// The sparse grid the solver holds: the paper's 32-bit cell ids where every axis has at most
+// 1024 cells, 64-bit ids (21 bits per axis) past that, chosen at construction.
+template <class Exec>
+class NeighbourGrid {
+   public:
+    using Narrow = KeyedNeighbourGrid<Exec, CellKey>;
+    using Wide = KeyedNeighbourGrid<Exec, WideCellKey>;
+
+    // Throws SimulationError if an axis has more cells than even the 64-bit id holds.
+    explicit NeighbourGrid(const GridSpec& spec)
+        : grid_(needsWideCellIds(spec) ? Variant(std::in_place_type<Wide>, spec)
+                                       : Variant(std::in_place_type<Narrow>, spec)) {}
+
+    // Sorts particles by cell and builds the tables; see KeyedNeighbourGrid::build.
+    void build(Exec& exec, const Real4* pos, Index n) {
+        std::visit([&](auto& grid) { grid.build(exec, pos, n); }, grid_);
+    }
+
+    GridNeighbours view() const {
+        return std::visit([](const auto& grid) { return grid.view(); }, grid_);
+    }
+    const Index* permutation() const {
+        return std::visit([](const auto& grid) { return grid.permutation(); }, grid_);
+    }
+    const GridSpec& spec() const {
+        return std::visit([](const auto& grid) -> const GridSpec& { return grid.spec(); }, grid_);
+    }
+    Index numCells() const {
+        return std::visit([](const auto& grid) { return grid.numCells(); }, grid_);
+    }
+    Index numParticles() const {
+        return std::visit([](const auto& grid) { return grid.numParticles(); }, grid_);
+    }
+    std::size_t bytesHeld() const {
+        return std::visit([](const auto& grid) { return grid.bytesHeld(); }, grid_);
+    }
+
+    // 32 or 64: the width of this grid's cell ids.
+    int cellIdBits() const { return std::holds_alternative<Wide>(grid_) ? 64 : 32; }
+    // The grid with its cell ids, for tests and statistics; null if it uses the other width.
+    template <class Key>
+    const KeyedNeighbourGrid<Exec, Key>* keyed() const {
+        return std::get_if<KeyedNeighbourGrid<Exec, Key>>(&grid_);
+    }
+
+   private:
+    using Variant = std::variant<Narrow, Wide>;
+    Variant grid_;
 };
 
 }  // namespace weir

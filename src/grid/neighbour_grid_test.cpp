@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <numeric>
 #include <set>
+#include <string>
+#include <utility>
 
 #include "core/exec_cpu.h"
 #include "grid/dense_grid.h"
@@ -15,6 +17,8 @@ namespace weir {
 namespace {
 
 using testing::Cloud;
+using testing::clumpsAlong;
+using testing::stableSorted;
 
 TEST(CpuRadixSort, SortsStablyOnTheKeyBits) {
     std::mt19937 rng(3);
@@ -39,20 +43,42 @@ TEST(CpuRadixSort, SortsStablyOnTheKeyBits) {
     }
 }
 
-class GridVersusBrute : public ::testing::TestWithParam<int> {};
+TEST(CpuRadixSort, WideKeysSortLikeStableSort) {
+    std::mt19937_64 rng(5);
+    const int n = 40000;
+    // All 63 bits used (a 2^21-cell axis in every field), then only the low 45 (what a thin grid
+    // sorts on); few distinct keys, so stability shows.
+    for (int keyBits : {63, 45}) {
+        std::vector<WideCellKey> keys(n), sortedKeys(n);
+        std::vector<Index> values(n), sortedValues(n);
+        std::vector<WideCellKey> pool(700);
+        for (WideCellKey& k : pool) {
+            k = rng() >> (64 - keyBits);
+        }
+        for (int i = 0; i < n; ++i) {
+            keys[i] = pool[rng() % pool.size()];
+            values[i] = i;
+        }
+        CpuExec exec;
+        exec.sortPairs(keys.data(), sortedKeys.data(), values.data(), sortedValues.data(), n,
+                       keyBits);
+        const auto expected = stableSorted(keys);
+        for (int i = 0; i < n; ++i) {
+            ASSERT_EQ(sortedKeys[i], expected[i].first) << keyBits << " bits, at " << i;
+            ASSERT_EQ(sortedValues[i], expected[i].second) << keyBits << " bits, at " << i;
+        }
+    }
+}
 
-TEST_P(GridVersusBrute, SameNeighboursAsBruteForce) {
-    const int n = GetParam();
-    const Real size = 1, h = Real(0.09);
-    Cloud cloud = testing::randomCloud(n, size, unsigned(n));
-    CpuExec exec;
-    NeighbourGrid<CpuExec> grid(makeGridSpec({0, 0, 0}, {size, size, size}, h));
-    std::vector<Real4> pos = cloud.packed();
-    grid.build(exec, pos.data(), n);
-
+// The grid's tables against their definitions, and its candidates against brute force: every
+// particle's candidates within h are exactly its brute-force neighbours.
+template <class Key>
+void expectGridMatchesBruteForce(const KeyedNeighbourGrid<CpuExec, Key>& grid, const Cloud& cloud,
+                                 Real h) {
+    const Index n = Index(cloud.x.size());
     // Cell table: strictly increasing ids, runs that tile [0, n), particles in their own cell.
     const Index cells = grid.numCells();
-    const CellKey* cellKeys = grid.cellKeys().data();
+    const Key* cellKeys = grid.cellKeys().data();
     const Index* start = grid.cellStart().data();
     const Index* count = grid.cellCount().data();
     const Index* order = grid.permutation();
@@ -66,14 +92,15 @@ TEST_P(GridVersusBrute, SameNeighboursAsBruteForce) {
         }
         for (Index i = start[c]; i < start[c] + count[c]; ++i) {
             Index p = order[i];
-            ASSERT_EQ(grid.spec().keyOf(cloud.x[p], cloud.y[p], cloud.z[p]), cellKeys[c]);
+            ASSERT_EQ(grid.spec().template keyOf<Key>(cloud.x[p], cloud.y[p], cloud.z[p]),
+                      cellKeys[c]);
             ASSERT_EQ(grid.particleCell().data()[i], c);
         }
     }
     ASSERT_EQ(covered, n);
 
     // Neighbour table: entry for offset (dx, dy, dz) is that cell if occupied, else -1.
-    std::set<CellKey> occupied(cellKeys, cellKeys + cells);
+    std::set<Key> occupied(cellKeys, cellKeys + cells);
     for (Index c = 0; c < cells; ++c) {
         CellCoord home = decodeCell(cellKeys[c]);
         for (int dy = -1; dy <= 1; ++dy) {
@@ -84,10 +111,10 @@ TEST_P(GridVersusBrute, SameNeighboursAsBruteForce) {
                     int x = home.x + dx, y = home.y + dy, z = home.z + dz;
                     bool inGrid = x >= 0 && y >= 0 && z >= 0 && x < grid.spec().dims[0] &&
                                   y < grid.spec().dims[1] && z < grid.spec().dims[2];
-                    bool expected = inGrid && occupied.count(encodeCell(x, y, z)) > 0;
+                    bool expected = inGrid && occupied.count(encodeCell<Key>(x, y, z)) > 0;
                     ASSERT_EQ(e >= 0, expected);
                     if (e >= 0) {
-                        ASSERT_EQ(cellKeys[e], encodeCell(x, y, z));
+                        ASSERT_EQ(cellKeys[e], encodeCell<Key>(x, y, z));
                     }
                 }
             }
@@ -113,7 +140,73 @@ TEST_P(GridVersusBrute, SameNeighboursAsBruteForce) {
     }
 }
 
+class GridVersusBrute : public ::testing::TestWithParam<int> {};
+
+TEST_P(GridVersusBrute, SameNeighboursAsBruteForce) {
+    const int n = GetParam();
+    const Real size = 1, h = Real(0.09);
+    Cloud cloud = testing::randomCloud(n, size, unsigned(n));
+    CpuExec exec;
+    NeighbourGrid<CpuExec> grid(makeGridSpec({0, 0, 0}, {size, size, size}, h));
+    // 12 cells per axis fit the paper's 32-bit cell id, so the grid keeps it.
+    ASSERT_EQ(grid.cellIdBits(), 32);
+    ASSERT_EQ(grid.keyed<WideCellKey>(), nullptr);
+    std::vector<Real4> pos = cloud.packed();
+    grid.build(exec, pos.data(), n);
+    ASSERT_NE(grid.keyed<CellKey>(), nullptr);
+    ASSERT_EQ(grid.permutation(), grid.keyed<CellKey>()->permutation());
+    expectGridMatchesBruteForce(*grid.keyed<CellKey>(), cloud, h);
+}
+
 INSTANTIATE_TEST_SUITE_P(Sizes, GridVersusBrute, ::testing::Values(1, 2, 50, 3000));
+
+class WideGridVersusBrute : public ::testing::TestWithParam<int> {};
+
+TEST_P(WideGridVersusBrute, SameNeighboursAsBruteForcePast1024Cells) {
+    const int longAxis = GetParam();
+    const Real h = Real(0.002), length = 1250 * h, width = 4 * h;
+    Cloud cloud = clumpsAlong(longAxis, length, width, h, 17 + unsigned(longAxis));
+    Vec3d boxMax(width, width, width);
+    boxMax[longAxis] = length;
+    const GridSpec spec = makeGridSpec({0, 0, 0}, boxMax, h);
+    ASSERT_EQ(spec.dims[longAxis], 1250);
+    ASSERT_TRUE(needsWideCellIds(spec));
+
+    CpuExec exec;
+    NeighbourGrid<CpuExec> grid(spec);
+    ASSERT_EQ(grid.cellIdBits(), 64);
+    ASSERT_EQ(grid.keyed<CellKey>(), nullptr);
+    std::vector<Real4> pos = cloud.packed();
+    const Index n = Index(pos.size());
+    grid.build(exec, pos.data(), n);
+    const auto* wide = grid.keyed<WideCellKey>();
+    ASSERT_NE(wide, nullptr);
+    EXPECT_EQ(grid.numParticles(), n);
+
+    // Particles do sit past cell 1024 (the test reaches where a 32-bit id would fail) ...
+    int beyond = 0;
+    for (Index i = 0; i < n; ++i) {
+        CellCoord c = spec.cellOf(pos[i].x, pos[i].y, pos[i].z);
+        beyond += (longAxis == 0 ? c.x : longAxis == 1 ? c.y : c.z) >= 1024 ? 1 : 0;
+    }
+    ASSERT_GT(beyond, 100);
+    // ... the sort covers every key bit in use ...
+    for (Index c = 0; c < grid.numCells(); ++c) {
+        ASSERT_LT(wide->cellKeys().data()[c], WideCellKey(1) << wide->sortKeyBits());
+    }
+    // ... and the tables and the neighbours are right.
+    expectGridMatchesBruteForce(*wide, cloud, h);
+    std::size_t pairs = 0;
+    for (const auto& set : testing::bruteNeighbourSets(cloud, h)) {
+        pairs += set.size();
+    }
+    EXPECT_GT(pairs, std::size_t(n));  // neighbours to find: the comparison is not empty
+    // The wider ids are counted in the grid's memory.
+    EXPECT_GE(grid.bytesHeld(), 2 * std::size_t(n) * sizeof(WideCellKey));
+}
+
+INSTANTIATE_TEST_SUITE_P(LongAxis, WideGridVersusBrute, ::testing::Values(0, 1, 2),
+                         [](const auto& info) { return std::string(1, "XYZ"[info.param]); });
 
 class DenseGridVersusBrute : public ::testing::TestWithParam<int> {};
 

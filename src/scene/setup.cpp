@@ -322,7 +322,8 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     say("blow-up bound: speed > " + fmt(p.maxSpeed) + " m/s, NaN, or a particle outside the box");
 
     try {
-        // The dense cell table takes grids past the paper's 1024 cells per axis.
+        // Past the paper's 1024 cells per axis the dense table, or the sparse grid with 64-bit
+        // cell ids, takes over.
         setup.grid = makeGridSpec(scene.container.min, scene.container.max, h, 1 << 20);
     } catch (const std::exception& e) {
         throw SceneError(where + ": " + e.what());
@@ -365,7 +366,8 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     }
     say(std::to_string(setup.particleCount()) + " particles, grid " +
         std::to_string(setup.grid.dims[0]) + " x " + std::to_string(setup.grid.dims[1]) + " x " +
-        std::to_string(setup.grid.dims[2]) + " cells of " + fmt(h) + " m");
+        std::to_string(setup.grid.dims[2]) + " cells of " + fmt(h) + " m; sparse grid cell ids " +
+        cellIdDescription(setup.grid));
     if (out != nullptr) {
         *out = std::move(report);
     }

@@ -570,7 +570,7 @@ TEST(Setup, TimeStepLandsOnFramesAndRespectsTheLimits) {
 
 // --- scenes that cannot run ---------------------------------------------------------------
 
-TEST(Setup, ContainerPastTheCellLimitsIsRejected) {
+TEST(Setup, ContainerPastTheSetupCellLimitIsRejected) {
     // h = 2 x 0.005 = 0.01 m: 10.24 m is exactly 1024 cells, 10.25 m needs 1025.
     auto scene = [](const std::string& width) {
         return R"({
@@ -583,20 +583,18 @@ TEST(Setup, ContainerPastTheCellLimitsIsRejected) {
     SimulationSetup fits = buildSetup(parseScene(scene("10.24"), "<fits>"), {}, nullptr);
     EXPECT_EQ(fits.grid.dims[0], 1024);
     EXPECT_EQ(fits.particles.size(), 64u);
+    EXPECT_FALSE(needsWideCellIds(fits.grid));
     EXPECT_NO_THROW(makeSimulation(Backend::Cpu, NeighbourMode::Grid, std::move(fits)));
 
-    // 1025 cells: past the paper's 10-bit cell ids, so its grid (cell and neighbour tables)
-    // refuses, naming the limit; the setup itself stands, for the dense cell table.
-    SimulationSetup wide = buildSetup(parseScene(scene("10.25"), "wide.json"), {}, nullptr);
+    // 1025 cells: past the paper's 10-bit cell ids, so the paper's grid switches to 64-bit ids
+    // (and says so) where it used to refuse; the dense cell table serves as before.
+    SetupReport wideReport;
+    SimulationSetup wide = buildSetup(parseScene(scene("10.25"), "wide.json"), {}, &wideReport);
     EXPECT_EQ(wide.grid.dims[0], 1025);
-    try {
-        makeSimulation(Backend::Cpu, NeighbourMode::Grid, wide);
-        ADD_FAILURE() << "no SimulationError for 1025 cells along x in the paper's grid";
-    } catch (const SimulationError& e) {
-        EXPECT_TRUE(contains(e.what(), "1024"));
-        EXPECT_TRUE(contains(e.what(), "1025"));
-        EXPECT_TRUE(contains(e.what(), "along x"));
-    }
+    EXPECT_TRUE(needsWideCellIds(wide.grid));
+    EXPECT_TRUE(contains(wideReport.lines.back(), "cell ids 64-bit (21 bits per axis)"))
+        << wideReport.lines.back();
+    EXPECT_NO_THROW(makeSimulation(Backend::Cpu, NeighbourMode::Grid, wide));
     EXPECT_NO_THROW(makeSimulation(Backend::Cpu, NeighbourMode::Dense, wide));
     EXPECT_NO_THROW(makeSimulation(Backend::Cpu, NeighbourMode::Auto, wide));
 
@@ -607,7 +605,7 @@ TEST(Setup, ContainerPastTheCellLimitsIsRejected) {
     EXPECT_TRUE(contains(message, "1048576"));
     EXPECT_TRUE(contains(message, "along x"));
 
-    // Along z, through --particles (a finer lattice, a smaller h): 1200 cells, paper grid only.
+    // Along z, through --particles (a finer lattice, a smaller h): 1200 cells, 64-bit ids.
     Scene deep = parseScene(R"({
         "container": {"min": [0, 0, 0], "max": [0.2, 0.2, 12]},
         "blocks": [{"min": [0, 0, 0], "max": [0.1, 0.1, 0.1]}],
@@ -618,13 +616,8 @@ TEST(Setup, ContainerPastTheCellLimitsIsRejected) {
     many.particleCount = 8000;  // d = 0.005, h = 0.01
     SimulationSetup deepSetup = buildSetup(deep, many, nullptr);
     EXPECT_EQ(deepSetup.grid.dims[2], 1200);
-    try {
-        makeSimulation(Backend::Cpu, NeighbourMode::Grid, std::move(deepSetup));
-        ADD_FAILURE() << "no SimulationError for 1200 cells along z in the paper's grid";
-    } catch (const SimulationError& e) {
-        EXPECT_TRUE(contains(e.what(), "1024"));
-        EXPECT_TRUE(contains(e.what(), "along z"));
-    }
+    EXPECT_TRUE(needsWideCellIds(deepSetup.grid));
+    EXPECT_NO_THROW(makeSimulation(Backend::Cpu, NeighbourMode::Grid, std::move(deepSetup)));
 }
 
 TEST(Setup, FluidTooSmallForOneParticleIsASceneError) {

@@ -52,7 +52,7 @@ NeighbourMode resolveNeighbourMode(NeighbourMode mode, const GridSpec& grid, std
     return denseGridSuits(grid, n) ? NeighbourMode::Dense : NeighbourMode::Grid;
 }
 
-std::size_t bytesPerParticleEstimate(NeighbourMode mode) {
+std::size_t bytesPerParticleEstimate(NeighbourMode mode, std::size_t cellIdBytes) {
     // Position and velocity (padded vectors, density in the velocity's fourth), id.
     std::size_t bytes = 2 * sizeof(Real4) + sizeof(Index);
     switch (mode) {
@@ -62,9 +62,9 @@ std::size_t bytesPerParticleEstimate(NeighbourMode mode) {
         case NeighbourMode::Grid:
             // Acceleration; reorder scratch (position, velocity, id); keys and values twice for
             // the sort and as much again of sort scratch; the cell of each particle; cell tables
-            // for up to one occupied cell per two particles.
-            bytes += 3 * sizeof(Real4) + sizeof(Index) + 2 * (2 * 4 + 2 * sizeof(Index)) +
-                     sizeof(Index) + (3 * 4 + 27 * sizeof(Index)) / 2;
+            // (id, start, count, 27 neighbours) for up to one occupied cell per two particles.
+            bytes += 3 * sizeof(Real4) + sizeof(Index) + 2 * (2 * cellIdBytes + 2 * sizeof(Index)) +
+                     sizeof(Index) + (cellIdBytes + 2 * sizeof(Index) + 27 * sizeof(Index)) / 2;
             break;
         default:
             // New state of the fused force pass (position, velocity), reorder scratch (id); key,
@@ -76,8 +76,8 @@ std::size_t bytesPerParticleEstimate(NeighbourMode mode) {
 }
 
 void checkMemoryFits(Index count, NeighbourMode mode, std::size_t freeBytes,
-                     const std::string& where) {
-    const std::size_t perParticle = bytesPerParticleEstimate(mode);
+                     const std::string& where, std::size_t cellIdBytes) {
+    const std::size_t perParticle = bytesPerParticleEstimate(mode, cellIdBytes);
     // Keep 10% and 256 MiB back for sort scratch, the driver and the rest of the process.
     const std::size_t reserve = (std::size_t(256) << 20) + freeBytes / 10;
     const std::size_t usable = freeBytes > reserve ? freeBytes - reserve : 0;
@@ -95,7 +95,8 @@ std::unique_ptr<RankPart> makeSimulation(Backend backend, NeighbourMode mode,
                                          SimulationSetup setup) {
     mode = resolveNeighbourMode(mode, setup.grid, setup.particleCount());
     if (backend == Backend::Cpu) {
-        checkMemoryFits(Index(setup.countHere()), mode, CpuExec().freeMemoryBytes(), "host memory");
+        checkMemoryFits(Index(setup.countHere()), mode, CpuExec().freeMemoryBytes(), "host memory",
+                        cellIdBytesFor(setup.grid));
         return makeCpuSimulation(mode, std::move(setup));
     }
 #if defined(WEIR_HAS_CUDA)

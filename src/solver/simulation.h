@@ -136,11 +136,12 @@ class RankPart : public Simulation {
 std::unique_ptr<RankPart> makeSimulation(Backend backend, NeighbourMode mode,
                                          SimulationSetup setup);
 
-// Bytes of memory one particle needs (arrays, sort scratch, grid tables), an upper estimate.
-std::size_t bytesPerParticleEstimate(NeighbourMode mode);
+// Bytes of memory one particle needs (arrays, sort scratch, grid tables), an upper estimate;
+// cellIdBytes: the width of the sparse grid's cell ids (cellIdBytesFor(grid)).
+std::size_t bytesPerParticleEstimate(NeighbourMode mode, std::size_t cellIdBytes = sizeof(CellKey));
 
 // Throws SimulationError naming how many particles would fit if `count` do not fit in `freeBytes`.
 void checkMemoryFits(Index count, NeighbourMode mode, std::size_t freeBytes,
-                     const std::string& where);
+                     const std::string& where, std::size_t cellIdBytes = sizeof(CellKey));
 
 }  // namespace weir

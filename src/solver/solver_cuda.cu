@@ -8,7 +8,8 @@ template class SphSolver<CudaExec>;
 
 std::unique_ptr<RankPart> makeCudaSimulation(NeighbourMode mode, SimulationSetup setup) {
     CudaExec probe;
-    checkMemoryFits(Index(setup.countHere()), mode, probe.freeMemoryBytes(), "the GPU");
+    checkMemoryFits(Index(setup.countHere()), mode, probe.freeMemoryBytes(), "the GPU",
+                    cellIdBytesFor(setup.grid));
     return std::make_unique<SphSolver<CudaExec>>(mode, std::move(setup));
 }
 

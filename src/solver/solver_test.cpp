@@ -2,6 +2,8 @@
 // blow-up detection, memory limits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/check.h"
 #include "solver/solver_test_support.h"
 
@@ -30,6 +32,38 @@ TEST_P(NeighbourModes, GridAndBruteForceGiveTheSameFluid) {
 
 INSTANTIATE_TEST_SUITE_P(Tables, NeighbourModes,
                          ::testing::Values(NeighbourMode::Grid, NeighbourMode::Dense));
+
+TEST(Solver, GridPast1024CellsUsesWideIdsAndMatchesBruteForce) {
+    // h = 0.01 m: 1050 cells along x, where the paper's 32-bit cell id stops at 1024 (the grid
+    // used to refuse this scene). The fluid starts across cell 1024, at x = 0 (where floats are
+    // fine enough to compare to 1e-4 d), and moves along x.
+    Scene scene = parseScene(R"({
+        "container": {"min": [-10.24, 0, 0], "max": [0.26, 0.1, 0.1]},
+        "blocks": [{"min": [-0.04, 0, 0], "max": [0.02, 0.05, 0.04], "velocity": [1, 0, 0]}],
+        "particles": {"spacing": 0.005}
+    })",
+                             "<test long container>");
+    SetupReport report;
+    SimulationSetup setup = buildSetup(scene, {}, &report);
+    ASSERT_EQ(setup.grid.dims[0], 1050);
+    ASSERT_TRUE(needsWideCellIds(setup.grid));
+    const HostParticles initial = setup.particles;
+    auto grid = makeSimulation(Backend::Cpu, NeighbourMode::Grid, setup);
+    auto brute = makeSimulation(Backend::Cpu, NeighbourMode::Brute, std::move(setup));
+    ASSERT_GT(grid->particleCount(), 500);
+    HostParticles a = stateAfter(*grid, 60), b = stateAfter(*brute, 60);
+    EXPECT_EQ(grid->fault().code, 0);
+    EXPECT_GT(grid->occupiedCells(), 0);
+    EXPECT_LT(maxPositionDifference(a, b), 1e-4 * report.spacing);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        ASSERT_NEAR(a.rho[i], b.rho[i], 1e-3 * scene.restDensity) << "particle " << i;
+    }
+    // Particles on both sides of cell 1024, and the fluid did move.
+    const auto [left, right] = std::minmax_element(a.x.begin(), a.x.end());
+    EXPECT_LT(*left, 0.0);
+    EXPECT_GT(*right, 0.0);
+    EXPECT_GT(maxPositionDifference(a, initial), 0.1 * report.spacing);
+}
 
 TEST(Solver, GraphlessAndSteppedRunsAreIdenticalOnTheCpu) {
     // advance(n) in one call and n calls of advance(1) must give the same state bit for bit
@@ -187,6 +221,9 @@ TEST(Solver, RefusesParticlesThatDoNotFit) {
         EXPECT_NE(msg.find("the GPU"), std::string::npos) << msg;
     }
     EXPECT_NO_THROW(checkMemoryFits(1000, NeighbourMode::Grid, std::size_t(2) << 30, "the GPU"));
+    // 64-bit cell ids (grids past 1024 cells per axis) cost more per particle.
+    EXPECT_GT(bytesPerParticleEstimate(NeighbourMode::Grid, sizeof(WideCellKey)),
+              bytesPerParticleEstimate(NeighbourMode::Grid, sizeof(CellKey)));
 }
 
 TEST(Solver, FrameZeroHasDensity) {
