@@ -11,6 +11,7 @@
 
 #include "core/config.h"
 #include "core/stage_timer.h"
+#include "core/team.h"
 
 namespace weir {
 
@@ -47,10 +48,10 @@ class CpuExec {
         }
     }
 
-    // The same; the per-thread scratch is the GPU's (CPU threads keep theirs on the stack).
+    // Runs f(i, team) for i in [0, n): on the CPU every team is one thread.
     template <class F>
-    void forEachWithScratch(Index n, int /*bytesPerThread*/, F f) const {
-        forEach(n, f);
+    void forEachTeam(Index n, int /*teamSize*/, F f) const {
+        forEach(n, [&](Index i) { f(i, Team{}); });
     }
 
     // Stable sort of (key, value) pairs by the low keyBits bits of the key (LSD radix sort).
@@ -105,6 +106,7 @@ class CpuExec {
     bool timing = false;
 
     std::string deviceName() const;
+    std::int64_t residentThreads() const { return omp_get_max_threads(); }
     std::size_t freeMemoryBytes() const;
 
    private:

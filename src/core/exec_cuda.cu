@@ -15,8 +15,10 @@ CudaExec::CudaExec() {
     int device = 0, major = 0;
     WEIR_CUDA_CHECK(cudaGetDevice(&device));
     WEIR_CUDA_CHECK(cudaDeviceGetAttribute(&major, cudaDevAttrComputeCapabilityMajor, device));
+    WEIR_CUDA_CHECK(
+        cudaDeviceGetAttribute(&multiprocessors_, cudaDevAttrMultiProcessorCount, device));
     const char* pdl = std::getenv("WEIR_PDL");
-    programmaticLaunch = major >= 9 && pdl != nullptr && std::string(pdl) == "1";
+    programmaticLaunch = major >= 9 && !(pdl != nullptr && std::string(pdl) == "0");
 }
 
 CudaExec::~CudaExec() {

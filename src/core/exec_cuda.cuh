@@ -12,6 +12,7 @@
 #include "core/check.h"
 #include "core/config.h"
 #include "core/stage_timer.h"
+#include "core/team.h"
 
 namespace weir {
 
@@ -124,25 +125,15 @@ class CudaExec {
     // Runs f(i) for i in [0, n), one CUDA thread each, on this backend's stream.
     template <class F>
     void forEach(Index n, F f) const {
-        forEachWithScratch(n, 0, f);
-    }
-
-    // The same with bytesPerThread of shared memory for each thread (see PendingNeighbours):
-    // at most 48 KB a block, the limit without an opt-in.
-    template <class F>
-    void forEachWithScratch(Index n, int bytesPerThread, F f) const {
         if (n <= 0) {
             return;
         }
-        const std::size_t shared = std::size_t(bytesPerThread) * kBlockSize;
-        WEIR_REQUIRE(shared <= 48 * 1024, "a launch asked for " << shared
-                                                               << " bytes of shared memory");
         unsigned blocks = unsigned((std::int64_t(n) + kBlockSize - 1) / kBlockSize);
         if (programmaticLaunch) {
             cudaLaunchConfig_t config{};
             config.gridDim = dim3(blocks);
             config.blockDim = dim3(kBlockSize);
-            config.dynamicSmemBytes = shared;
+            config.dynamicSmemBytes = 0;
             config.stream = stream_;
             cudaLaunchAttribute attribute{};
             attribute.id = cudaLaunchAttributeProgrammaticStreamSerialization;
@@ -151,7 +142,7 @@ class CudaExec {
             config.numAttrs = 1;
             WEIR_CUDA_CHECK(cudaLaunchKernelEx(&config, forEachKernel<F>, n, f));
         } else {
-            forEachKernel<<<blocks, kBlockSize, shared, stream_>>>(n, f);
+            forEachKernel<<<blocks, kBlockSize, 0, stream_>>>(n, f);
         }
         WEIR_CUDA_CHECK(cudaGetLastError());
 #ifndef NDEBUG
@@ -161,6 +152,17 @@ class CudaExec {
             WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
         }
 #endif
+    }
+
+    // Runs f(i, team) for i in [0, n) with a team of teamSize adjacent lanes per i (core/team.h).
+    template <class F>
+    void forEachTeam(Index n, int teamSize, F f) const {
+        const int shift = teamShift(teamSize);
+        WEIR_REQUIRE((std::int64_t(n) << shift) < (std::int64_t(1) << 31),
+                     "a team launch of " << n << " x " << teamSize << " threads");
+        forEach(n << shift, [=] __device__(Index t) {
+            f(t >> shift, Team{int(t & ((1 << shift) - 1)), 1 << shift});
+        });
     }
 
     // Stable (key, value) radix sort on the low keyBits bits, by CUB.
@@ -260,8 +262,8 @@ class CudaExec {
     }
     void launch(const Graph& graph) { WEIR_CUDA_CHECK(cudaGraphLaunch(graph.get(), stream_)); }
 
-    // Programmatic dependent launch of forEach kernels (see forEachKernel); Hopper and later.
-    // WEIR_PDL=1 turns it on (a speed experiment).
+    // Programmatic dependent launch of forEach kernels (see forEachKernel) on Hopper and later
+    // (bench/NOTES.md #11); WEIR_PDL=0 turns it off.
     bool programmaticLaunch = false;
 
     void stageBegin(const char* stage);
@@ -271,6 +273,8 @@ class CudaExec {
     bool timing = false;
 
     std::string deviceName() const;
+    // Threads the GPU keeps resident at forEachKernel's occupancy (6 blocks of 256 per SM).
+    std::int64_t residentThreads() const { return std::int64_t(multiprocessors_) * 6 * kBlockSize; }
     std::size_t freeMemoryBytes() const;
     cudaStream_t stream() const { return stream_; }
 
@@ -279,6 +283,7 @@ class CudaExec {
     cudaEvent_t takeEvent();
 
     cudaStream_t stream_ = nullptr;
+    int multiprocessors_ = 1;
     DeviceBuffer<unsigned char> sortTemp_, scanTemp_;
     std::vector<cudaEvent_t> eventPool_;
     std::size_t eventsUsed_ = 0;

@@ -17,6 +17,7 @@
 
 #include "core/atomics.h"
 #include "core/config.h"
+#include "core/team.h"
 #include "core/vec3.h"
 #include "grid/cell_id.h"
 
@@ -40,8 +41,9 @@ struct DenseGridNeighbours {
     // chord visits fewer candidates but measured slower (bench/NOTES.md: the branchy bounds cost
     // more than the candidates they save), so runs stay whole. Plain nested loops: the same walk
     // written as a row iterator measured 16% slower on the GPU.
+    // A team of several lanes (core/team.h) deals the rows out between its lanes in turn.
     template <class F>
-    WEIR_HD void forEachCandidate(Index i, F&& f) const {
+    WEIR_HD void forEachCandidate(Index i, F&& f, Team team = Team{}) const {
         const Real4 p = pos[i];
         // The same function of the same position as in the build: the cell it was grouped in.
         const CellCoord c = spec.cellOf(p.x, p.y, p.z);
@@ -52,6 +54,7 @@ struct DenseGridNeighbours {
         const int zHi = c.z + reach < nz ? c.z + reach : nz - 1;
         const int xLo = c.x >= reach ? c.x - reach : 0;
         const int xHi = c.x + reach < nx ? c.x + reach : nx - 1;
+        int row = 0;
         for (int y = yLo; y <= yHi; ++y) {
             const Real dy = slabDistance(p.y, spec.origin.y + Real(y) * spec.cellSize);
             const Real remY = h2 - dy * dy;
@@ -60,12 +63,12 @@ struct DenseGridNeighbours {
             }
             for (int z = zLo; z <= zHi; ++z) {
                 const Real dz = slabDistance(p.z, spec.origin.z + Real(z) * spec.cellSize);
-                if (remY - dz * dz <= Real(0)) {
+                if (remY - dz * dz <= Real(0) || !team.takes(row++)) {
                     continue;
                 }
-                const CellKey row = denseCellIndex(0, y, z, nx, nz);
-                const Index end = cellBound[row + CellKey(xHi) + 1];
-                for (Index j = cellBound[row + CellKey(xLo)]; j < end; ++j) {
+                const CellKey rowStart = denseCellIndex(0, y, z, nx, nz);
+                const Index end = cellBound[rowStart + CellKey(xHi) + 1];
+                for (Index j = cellBound[rowStart + CellKey(xLo)]; j < end; ++j) {
                     f(j);
                 }
             }

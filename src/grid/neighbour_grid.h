@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "core/config.h"
+#include "core/team.h"
 #include "grid/cell_id.h"
 #include "grid/cell_sort.h"
 
@@ -34,10 +35,14 @@ struct GridNeighbours {
 
     // Calls f(j) for every particle j in the 27 cells around particle i, i itself included.
     // The cells of one X row are consecutive in the sorted order, so each row is one run.
+    // A team of several lanes (core/team.h) deals the rows out between its lanes in turn.
     template <class F>
-    WEIR_HD void forEachCandidate(Index i, F&& f) const {
+    WEIR_HD void forEachCandidate(Index i, F&& f, Team team = Team{}) const {
         const Index* row = neighbourTable + std::size_t(particleCell[i]) * kNeighbourCells;
         for (int r = 0; r < 9; ++r) {
+            if (!team.takes(r)) {
+                continue;
+            }
             Index a = row[3 * r], b = row[3 * r + 1], c = row[3 * r + 2];
             Index first = a >= 0 ? a : (b >= 0 ? b : c);
             if (first < 0) {
@@ -57,8 +62,8 @@ struct BruteNeighbours {
     Index count;
 
     template <class F>
-    WEIR_HD void forEachCandidate(Index, F&& f) const {
-        for (Index j = 0; j < count; ++j) {
+    WEIR_HD void forEachCandidate(Index, F&& f, Team team = Team{}) const {
+        for (Index j = team.rank; j < count; j += team.size) {
             f(j);
         }
     }

@@ -268,3 +268,60 @@ INSTANTIATE_TEST_SUITE_P(Sizes, DenseGridVersusBrute, ::testing::Values(1, 2, 50
 
 }  // namespace
 }  // namespace weir
+
+namespace weir {
+namespace {
+
+// The candidates of a team's lanes (core/team.h), taken together, are the candidates of one
+// thread, each exactly once: every neighbour view deals its rows out without loss or overlap.
+template <class View>
+void expectTeamsDealEveryCandidateOnce(const View& view, Index n) {
+    for (int size : {2, 4, 8}) {
+        for (Index i = 0; i < n; ++i) {
+            std::vector<Index> alone, dealt;
+            view.forEachCandidate(i, [&](Index j) { alone.push_back(j); });
+            std::vector<int> perLane(std::size_t(size), 0);
+            for (int rank = 0; rank < size; ++rank) {
+                view.forEachCandidate(
+                    i,
+                    [&](Index j) {
+                        dealt.push_back(j);
+                        ++perLane[std::size_t(rank)];
+                    },
+                    Team{rank, size});
+            }
+            std::sort(alone.begin(), alone.end());
+            std::sort(dealt.begin(), dealt.end());
+            ASSERT_EQ(dealt, alone) << "particle " << i << ", team of " << size;
+            if (size == 2 && alone.size() > 40) {  // both lanes get work on a full neighbourhood
+                ASSERT_GT(perLane[0], 0) << "particle " << i;
+                ASSERT_GT(perLane[1], 0) << "particle " << i;
+            }
+        }
+    }
+}
+
+TEST(Teams, DealEveryCandidateOnceInEveryNeighbourView) {
+    const Index n = 2000;
+    const Real size = 1, h = Real(0.12);
+    testing::Cloud cloud = testing::randomCloud(n, size, 5);
+    std::vector<Real4> pos = cloud.packed();
+    CpuExec exec;
+
+    DenseGrid<CpuExec> dense(makeGridSpec({0, 0, 0}, {size, size, size}, h / 2), 2);
+    dense.build(exec, pos.data(), n);
+    std::vector<Real4> sorted(pos.size());
+    for (Index i = 0; i < n; ++i) {
+        sorted[std::size_t(i)] = pos[std::size_t(dense.permutation()[i])];
+    }
+    expectTeamsDealEveryCandidateOnce(dense.view(sorted.data(), h), n);
+
+    NeighbourGrid<CpuExec> sparse(makeGridSpec({0, 0, 0}, {size, size, size}, h));
+    sparse.build(exec, pos.data(), n);
+    expectTeamsDealEveryCandidateOnce(sparse.view(), n);
+
+    expectTeamsDealEveryCandidateOnce(BruteNeighbours{n}, Index(200));
+}
+
+}  // namespace
+}  // namespace weir

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/config.h"
+#include "core/team.h"
 #include "core/vec3.h"
 #include "physics/boundary.h"
 #include "physics/eos.h"
@@ -76,13 +77,19 @@ WEIR_HD inline bool claimFault(FaultRecord* record, FaultCode code) {
 }
 
 // Eq. 2 with poly6: density of particle i (its pressure follows by eq. 3 where it is needed).
+// A team (core/team.h) shares the neighbours; every lane of it must call.
 template <class Neighbours>
 WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Neighbours& nb,
-                                      const SphParams& params) {
+                                      const SphParams& params, Team team = Team{}) {
     const Vec3 xi = pv.position(i);
     Real sum = 0;
     nb.forEachCandidate(
-        i, [&](Index j) { sum += poly6(params.kernel, lengthSquared(xi - pv.position(j))); });
+        i, [&](Index j) { sum += poly6(params.kernel, lengthSquared(xi - pv.position(j))); },
+        team);
+    sum = team.sum(sum);
+    if (!team.leader()) {
+        return;
+    }
     const Real walls =
         params.walls == WallKind::Simple
             ? wallDensity(params.wallWeight, params.boxMin, params.boxMax, params.restDensity, xi)
@@ -108,92 +115,26 @@ WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r,
     return rVec * pressure + (vj - vi) * viscous;
 }
 
-// The neighbours a force loop has found and not yet evaluated. On the GPU the lanes of a warp
-// walk different candidates, and only about one candidate in four is a neighbour: evaluated where
-// found, the pair force costs the warp its full price whenever any lane has a hit, nearly every
-// candidate. Found first and evaluated after, each lane pays only for its own neighbours
-// (bench/NOTES.md #10). The list lives in a column of the launch's shared memory on the GPU
-// (entry k of thread t at k * blockDim + t: no bank conflicts), in a local array on the CPU.
-class PendingNeighbours {
-   public:
-    static constexpr int kHostCapacity = 64;
-
-    WEIR_HD explicit PendingNeighbours(int capacity) {
-#if defined(__CUDA_ARCH__)
-        extern __shared__ Index launchScratch[];
-        slots_ = launchScratch + threadIdx.x;
-        stride_ = int(blockDim.x);
-        capacity_ = capacity;
-#else
-        slots_ = hostSlots_;
-        stride_ = 1;
-        capacity_ = capacity < kHostCapacity ? capacity : kHostCapacity;
-#endif
-    }
-    WEIR_HD bool full() const { return count_ == capacity_; }
-    WEIR_HD void push(Index j) { slots_[count_++ * stride_] = j; }
-    WEIR_HD int size() const { return count_; }
-    WEIR_HD Index operator[](int k) const { return slots_[k * stride_]; }
-    WEIR_HD void clear() { count_ = 0; }
-
-   private:
-    Index* slots_;
-    int stride_;
-    int capacity_;
-    int count_ = 0;
-    Index hostSlots_[kHostCapacity];
-};
-
-// Bytes of launch scratch per thread that a force pass with a list of `capacity` needs.
-constexpr int pendingNeighbourBytes(int capacity) { return capacity * int(sizeof(Index)); }
-
-// Acceleration of particle i: (pressure + viscous force density) / rho_i + gravity.
-// listCapacity 0 evaluates each neighbour where the walk finds it; otherwise the walk first
-// collects up to listCapacity neighbours (PendingNeighbours) and evaluates them in a second loop,
-// in the same order: the same sum. On the GPU the launch must give each thread
-// pendingNeighbourBytes(listCapacity) of shared memory.
+// Acceleration of particle i: (pressure + viscous force density) / rho_i + gravity. A team
+// (core/team.h) shares the neighbours, and every lane gets the whole acceleration.
 template <class Neighbours>
 WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighbours& nb,
-                                   const SphParams& params, int listCapacity = 0) {
+                                   const SphParams& params, Team team = Team{}) {
     const Vec3 xi = pv.position(i);
     const Real4 vi = pv.vel[i];
     const Real rhoi = vi.w, pi = pressureFromDensity(params, rhoi), h2 = params.kernel.h2;
     Vec3 force;
-    auto addPair = [&](Index j, const Vec3& rVec, Real r2) {
-        const Real4 vj = pv.vel[j];
-        const Real invR = reciprocalSqrt(r2);
-        force += pairForce(params, rVec, r2 * invR, invR, pi, pressureFromDensity(params, vj.w),
-                           rhoi, vj.w, vi.xyz(), vj.xyz());
-    };
-    if (listCapacity == 0) {
-        nb.forEachCandidate(i, [&](Index j) {
-            const Vec3 rVec = xi - pv.position(j);
-            const Real r2 = lengthSquared(rVec);
-            if (r2 < h2 && r2 > Real(0)) {
-                addPair(j, rVec, r2);
-            }
-        });
-    } else {
-        PendingNeighbours pending(listCapacity);
-        auto evaluatePending = [&] {
-            for (int k = 0; k < pending.size(); ++k) {
-                const Index j = pending[k];
-                const Vec3 rVec = xi - pv.position(j);
-                addPair(j, rVec, lengthSquared(rVec));
-            }
-            pending.clear();
-        };
-        nb.forEachCandidate(i, [&](Index j) {
-            const Real r2 = lengthSquared(xi - pv.position(j));
-            if (r2 < h2 && r2 > Real(0)) {
-                if (pending.full()) {
-                    evaluatePending();  // rare: more neighbours than the list holds
-                }
-                pending.push(j);
-            }
-        });
-        evaluatePending();
-    }
+    nb.forEachCandidate(i, [&](Index j) {
+        Vec3 rVec = xi - pv.position(j);
+        Real r2 = lengthSquared(rVec);
+        if (r2 < h2 && r2 > Real(0)) {
+            const Real4 vj = pv.vel[j];
+            const Real invR = reciprocalSqrt(r2);
+            force += pairForce(params, rVec, r2 * invR, invR, pi, pressureFromDensity(params, vj.w),
+                               rhoi, vj.w, vi.xyz(), vj.xyz());
+        }
+    }, team);
+    force = Vec3(team.sum(force.x), team.sum(force.y), team.sum(force.z));
     const Vec3 walls =
         params.walls == WallKind::Simple
             ? wallAcceleration(params.wallWeight, params.boxMin, params.boxMax, xi, rhoi, pi)
@@ -204,8 +145,11 @@ WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighb
 
 template <class Neighbours>
 WEIR_HD inline void accelerationAt(Index i, const ParticleView& pv, const Neighbours& nb,
-                                   const SphParams& params, int listCapacity = 0) {
-    pv.acc[i] = Real4::from(accelerationOf(i, pv, nb, params, listCapacity));
+                                   const SphParams& params, Team team = Team{}) {
+    const Vec3 a = accelerationOf(i, pv, nb, params, team);
+    if (team.leader()) {
+        pv.acc[i] = Real4::from(a);
+    }
 }
 
 // Removes the part of v along unit normal n that points into the wall, keeping `restitution` of
@@ -334,14 +278,19 @@ template <class Neighbours>
 WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                              const SphParams& params, const ObstacleView& obstacles,
                                              FaultRecord* fault, StepClock* clock, Real4* newPos,
-                                             Real4* newVel, int listCapacity = 0) {
+                                             Real4* newVel, Team team = Team{}) {
     const Real4 v4 = pv.vel[i];
     if (clock->dt == Real(0) || isGhost(pv.pos[i])) {  // a no-op step, or a ghost: carried over
-        newPos[i] = pv.pos[i];
-        newVel[i] = v4;
+        if (team.leader()) {
+            newPos[i] = pv.pos[i];
+            newVel[i] = v4;
+        }
         return;
     }
-    const Vec3 a = accelerationOf(i, pv, nb, params, listCapacity);
+    const Vec3 a = accelerationOf(i, pv, nb, params, team);
+    if (!team.leader()) {
+        return;
+    }
     Vec3 x = pv.position(i), v = v4.xyz();
     advanceParticle(x, v, a, i, params, obstacles, fault, clock);
     newPos[i] = Real4::from(x);

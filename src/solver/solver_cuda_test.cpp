@@ -148,31 +148,34 @@ TEST(CudaSolver, GraphReplayMatchesSingleSteps) {
     EXPECT_EQ(graphed->fault().step, stepped->fault().step);
 }
 
-// The force pass's neighbour list (PendingNeighbours, in shared memory on the GPU) against
-// evaluating each neighbour where it is found: the same pairs in the same order, so the same
-// state to rounding, with lists that overflow on every particle (4) and the default.
-TEST(CudaSolver, NeighbourListMatchesImmediateEvaluation) {
+// Teams of 2, 4 and 8 lanes per particle (core/team.h) against one thread per particle: the
+// same sums in another order, so the same flow to rounding.
+TEST(CudaSolver, TeamsOfLanesAgreeWithOneThreadPerParticle) {
     SKIP_WITHOUT_GPU();
     Scene scene = smallDamBreak(4000);
     SetupReport report;
-    const char* saved = std::getenv("WEIR_NEIGHBOUR_LIST");
+    const char* saved = std::getenv("WEIR_TEAM");
     const std::string restore = saved != nullptr ? saved : "";
-    auto run = [&](const char* capacity) {
-        setenv("WEIR_NEIGHBOUR_LIST", capacity, 1);
+    auto run = [&](const char* team) {
+        setenv("WEIR_TEAM", team, 1);
         auto sim = start(scene, Backend::Cuda, NeighbourMode::Dense, &report);
-        HostParticles state = stateAfter(*sim, 100);
-        EXPECT_EQ(sim->fault().code, 0) << "list of " << capacity;
+        HostParticles state = stateAfter(*sim, 150);
+        EXPECT_EQ(sim->fault().code, 0) << "team of " << team;
         return state;
     };
-    const HostParticles immediate = run("0"), tiny = run("4"), standard = run("32");
-    if (saved != nullptr) {
-        setenv("WEIR_NEIGHBOUR_LIST", restore.c_str(), 1);
-    } else {
-        unsetenv("WEIR_NEIGHBOUR_LIST");
+    const HostParticles alone = run("1");
+    for (const char* team : {"2", "4", "8"}) {
+        const HostParticles shared = run(team);
+        EXPECT_LT(rmsPositionDifference(alone, shared), 1e-4 * report.spacing) << team;
+        EXPECT_LT(maxPositionDifference(alone, shared), 1e-2 * report.spacing) << team;
+        EXPECT_NEAR(meanDensity(alone), meanDensity(shared), 1e-5 * scene.restDensity) << team;
+        EXPECT_GT(maxSpeed(shared), 0.3) << team;
     }
-    EXPECT_LT(maxPositionDifference(immediate, tiny), 1e-4 * report.spacing);
-    EXPECT_LT(maxPositionDifference(immediate, standard), 1e-4 * report.spacing);
-    EXPECT_GT(maxSpeed(standard), 0.3);
+    if (saved != nullptr) {
+        setenv("WEIR_TEAM", restore.c_str(), 1);
+    } else {
+        unsetenv("WEIR_TEAM");
+    }
 }
 
 TEST(CudaSolver, BlowUpIsDetectedOnTheGpu) {

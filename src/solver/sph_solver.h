@@ -321,9 +321,9 @@ class SphSolver final : public RankPart {
         exec_.stageBegin("density");
         const ParticleView pv = view();
         const SphParams params = params_;
-        exec_.forEach(n_, [=] WEIR_HD(Index i) {
+        exec_.forEachTeam(n_, teamSize(), [=] WEIR_HD(Index i, Team team) {
             if (clock == nullptr || clock->dt != Real(0)) {
-                densityPressureAt(i, pv, nb, params);
+                densityPressureAt(i, pv, nb, params, team);
             }
         });
         exec_.stageEnd("density");
@@ -335,10 +335,9 @@ class SphSolver final : public RankPart {
         const ParticleView pv = view();
         const SphParams params = params_;
         const StepClock* clock = clock_.data();
-        const int list = pendingCapacity_;
-        exec_.forEachWithScratch(n_, pendingNeighbourBytes(list), [=] WEIR_HD(Index i) {
+        exec_.forEach(n_, [=] WEIR_HD(Index i) {
             if (clock->dt != Real(0) && !isGhost(pv.pos[i])) {
-                accelerationAt(i, pv, nb, params, list);
+                accelerationAt(i, pv, nb, params);
             }
         });
         exec_.stageEnd("force");
@@ -355,10 +354,9 @@ class SphSolver final : public RankPart {
         FaultRecord* fault = fault_.data();
         StepClock* clock = clock_.data();
         Real4 *newPos = sortedPos_.data(), *newVel = sortedVel_.data();
-        const int list = pendingCapacity_;
-        exec_.forEachWithScratch(n_, pendingNeighbourBytes(list), [=] WEIR_HD(Index i) {
+        exec_.forEachTeam(n_, teamSize(), [=] WEIR_HD(Index i, Team team) {
             accelerateAndIntegrateAt(i, pv, nb, params, obstacles, fault, clock, newPos, newVel,
-                                     list);
+                                     team);
         });
         pos_.swap(sortedPos_);
         vel_.swap(sortedVel_);
@@ -772,18 +770,29 @@ class SphSolver final : public RankPart {
         return std::max(1, denseCellsPerRadius(setup.grid, setup.particleCount()));
     }
 
-    // Neighbours the force pass collects before evaluating them (PendingNeighbours): on the GPU
-    // only, where it spares the warp the pair force of its lanes' misses. WEIR_NEIGHBOUR_LIST
-    // overrides it for speed experiments (0: evaluate where found; at most 48).
-    static int pendingCapacity() {
-        if constexpr (!Exec::isDevice) {
-            return 0;
+    // Lanes per particle in the dense path's density and force passes (core/team.h): more than
+    // one where the particles alone would leave the GPU idle; WEIR_TEAM=1, 2, 4 or 8 sets it
+    // (speed experiments). The paper's grid and brute force keep one thread per particle.
+    int teamSize() const {
+        if (!Exec::isDevice || mode_ != NeighbourMode::Dense) {
+            return 1;
         }
-        const char* text = std::getenv("WEIR_NEIGHBOUR_LIST");
-        const int wanted = text != nullptr ? std::atoi(text) : kDefaultPendingCapacity;
-        return std::clamp(wanted, 0, 48);
+        if (teamOverride_ > 0) {
+            return teamOverride_;
+        }
+        const std::int64_t wanted = std::int64_t(2) * exec_.residentThreads();
+        int size = 1;
+        while (size < 8 && std::int64_t(n_) * size * 2 <= wanted) {
+            size *= 2;
+        }
+        return size;
     }
-    static constexpr int kDefaultPendingCapacity = 32;
+
+    static int teamOverride() {
+        const char* text = std::getenv("WEIR_TEAM");
+        const int wanted = text != nullptr ? std::atoi(text) : 0;
+        return wanted >= 8 ? 8 : (wanted >= 4 ? 4 : (wanted >= 2 ? 2 : (wanted == 1 ? 1 : 0)));
+    }
 
     static constexpr double kNoTarget = 1e300;
     mutable Exec exec_;  // mutable: reading the device clock back is not a change
@@ -818,7 +827,7 @@ class SphSolver final : public RankPart {
     typename Exec::Graph graph_;
     int graphParity_ = 0;
     StageTimes times_;
-    int pendingCapacity_ = pendingCapacity();
+    int teamOverride_ = teamOverride();  // 0: chosen by size
 };
 
 }  // namespace weir
