@@ -49,9 +49,10 @@ class CpuExec {
     }
 
     // Runs f(i, team) for i in [0, n): on the CPU every team is one thread.
-    template <class F>
-    void forEachTeam(Index n, int /*teamSize*/, F f) const {
-        forEach(n, [&](Index i) { f(i, Team{}); });
+    template <int TeamSize, class F>
+    void forEachTeam(Index n, F f) const {
+        static_assert(TeamSize == 1, "CPU threads work alone");
+        forEach(n, [&](Index i) { f(i, Team<1>{}); });
     }
 
     // Stable sort of (key, value) pairs by the low keyBits bits of the key (LSD radix sort).

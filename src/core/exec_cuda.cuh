@@ -154,14 +154,13 @@ class CudaExec {
 #endif
     }
 
-    // Runs f(i, team) for i in [0, n) with a team of teamSize adjacent lanes per i (core/team.h).
-    template <class F>
-    void forEachTeam(Index n, int teamSize, F f) const {
-        const int shift = teamShift(teamSize);
-        WEIR_REQUIRE((std::int64_t(n) << shift) < (std::int64_t(1) << 31),
-                     "a team launch of " << n << " x " << teamSize << " threads");
-        forEach(n << shift, [=] __device__(Index t) {
-            f(t >> shift, Team{int(t & ((1 << shift) - 1)), 1 << shift});
+    // Runs f(i, team) for i in [0, n) with a team of TeamSize adjacent lanes per i (core/team.h).
+    template <int TeamSize, class F>
+    void forEachTeam(Index n, F f) const {
+        WEIR_REQUIRE(std::int64_t(n) * TeamSize < (std::int64_t(1) << 31),
+                     "a team launch of " << n << " x " << TeamSize << " threads");
+        forEach(n * TeamSize, [=] __device__(Index t) {
+            f(t / TeamSize, Team<TeamSize>{int(t % TeamSize)});
         });
     }
 

@@ -1,28 +1,31 @@
-// A team: a few adjacent GPU lanes of one warp that share one particle's work. Each lane walks
-// its share of the neighbour rows and sum() adds the lanes' partial sums, so a small run puts
-// several lanes on each particle instead of leaving most of the GPU idle (bench/NOTES.md #12).
-// A team of one, the default and the CPU's, is a plain thread.
+// A team: Size adjacent GPU lanes of one warp that share one particle's work. The lanes walk the
+// same neighbour rows together and split each row's candidates between them (lane r takes every
+// Size-th from the r-th on), so they stay converged; sum() adds their partial sums. A small run
+// thus puts several lanes on each particle instead of leaving most of the GPU idle
+// (bench/NOTES.md #12). A team of one, the default and the CPU's, is a plain thread.
 #pragma once
 
 #include "core/config.h"
 
 namespace weir {
 
+template <int Size = 1>
 struct Team {
-    int rank = 0;  // this lane's place in the team, 0 .. size - 1
-    int size = 1;  // 1, 2, 4 or 8 (a power of two within a warp)
+    static_assert(Size == 1 || Size == 2 || Size == 4 || Size == 8, "a power of two in a warp");
+    static constexpr int size = Size;
+    int rank = 0;  // this lane's place in the team, 0 .. Size - 1
 
-    WEIR_HD bool leader() const { return rank == 0; }
-    // Whether this lane takes the k-th piece of work (pieces dealt in turn).
-    WEIR_HD bool takes(int k) const { return (k & (size - 1)) == rank; }
+    // The lane's first candidate in a run: a constant for a team of one.
+    WEIR_HD int first() const { return Size == 1 ? 0 : rank; }
+    WEIR_HD bool leader() const { return Size == 1 || rank == 0; }
 
     // The sum of v over the team's lanes, on every lane. Every lane of the team must call it.
     WEIR_HD Real sum(Real v) const {
 #if defined(__CUDA_ARCH__)
-        if (size > 1) {
+        if constexpr (Size > 1) {
             const unsigned lane = threadIdx.x & 31u;
-            const unsigned mask = ((1u << size) - 1u) << (lane & ~unsigned(size - 1));
-            for (int offset = size / 2; offset > 0; offset /= 2) {
+            const unsigned mask = ((1u << Size) - 1u) << (lane & ~unsigned(Size - 1));
+            for (int offset = Size / 2; offset > 0; offset /= 2) {
                 v += __shfl_xor_sync(mask, v, offset);
             }
         }
@@ -30,8 +33,5 @@ struct Team {
         return v;
     }
 };
-
-// log2 of a team size, for splitting a thread index into particle and rank.
-WEIR_HD constexpr int teamShift(int size) { return size >= 8 ? 3 : (size >= 4 ? 2 : (size >= 2 ? 1 : 0)); }
 
 }  // namespace weir

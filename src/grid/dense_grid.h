@@ -41,9 +41,9 @@ struct DenseGridNeighbours {
     // chord visits fewer candidates but measured slower (bench/NOTES.md: the branchy bounds cost
     // more than the candidates they save), so runs stay whole. Plain nested loops: the same walk
     // written as a row iterator measured 16% slower on the GPU.
-    // A team of several lanes (core/team.h) deals the rows out between its lanes in turn.
-    template <class F>
-    WEIR_HD void forEachCandidate(Index i, F&& f, Team team = Team{}) const {
+    // A team of several lanes (core/team.h) splits each run between its lanes.
+    template <class F, int TeamSize = 1>
+    WEIR_HD void forEachCandidate(Index i, F&& f, Team<TeamSize> team = {}) const {
         const Real4 p = pos[i];
         // The same function of the same position as in the build: the cell it was grouped in.
         const CellCoord c = spec.cellOf(p.x, p.y, p.z);
@@ -54,7 +54,6 @@ struct DenseGridNeighbours {
         const int zHi = c.z + reach < nz ? c.z + reach : nz - 1;
         const int xLo = c.x >= reach ? c.x - reach : 0;
         const int xHi = c.x + reach < nx ? c.x + reach : nx - 1;
-        int row = 0;
         for (int y = yLo; y <= yHi; ++y) {
             const Real dy = slabDistance(p.y, spec.origin.y + Real(y) * spec.cellSize);
             const Real remY = h2 - dy * dy;
@@ -63,12 +62,13 @@ struct DenseGridNeighbours {
             }
             for (int z = zLo; z <= zHi; ++z) {
                 const Real dz = slabDistance(p.z, spec.origin.z + Real(z) * spec.cellSize);
-                if (remY - dz * dz <= Real(0) || !team.takes(row++)) {
+                if (remY - dz * dz <= Real(0)) {
                     continue;
                 }
                 const CellKey rowStart = denseCellIndex(0, y, z, nx, nz);
                 const Index end = cellBound[rowStart + CellKey(xHi) + 1];
-                for (Index j = cellBound[rowStart + CellKey(xLo)]; j < end; ++j) {
+                for (Index j = cellBound[rowStart + CellKey(xLo)] + team.first(); j < end;
+                     j += TeamSize) {
                     f(j);
                 }
             }

@@ -35,14 +35,11 @@ struct GridNeighbours {
 
     // Calls f(j) for every particle j in the 27 cells around particle i, i itself included.
     // The cells of one X row are consecutive in the sorted order, so each row is one run.
-    // A team of several lanes (core/team.h) deals the rows out between its lanes in turn.
-    template <class F>
-    WEIR_HD void forEachCandidate(Index i, F&& f, Team team = Team{}) const {
+    // A team of several lanes (core/team.h) splits each run between its lanes.
+    template <class F, int TeamSize = 1>
+    WEIR_HD void forEachCandidate(Index i, F&& f, Team<TeamSize> team = {}) const {
         const Index* row = neighbourTable + std::size_t(particleCell[i]) * kNeighbourCells;
         for (int r = 0; r < 9; ++r) {
-            if (!team.takes(r)) {
-                continue;
-            }
             Index a = row[3 * r], b = row[3 * r + 1], c = row[3 * r + 2];
             Index first = a >= 0 ? a : (b >= 0 ? b : c);
             if (first < 0) {
@@ -50,7 +47,7 @@ struct GridNeighbours {
             }
             Index last = c >= 0 ? c : (b >= 0 ? b : a);
             Index end = cellStart[last] + cellCount[last];
-            for (Index j = cellStart[first]; j < end; ++j) {
+            for (Index j = cellStart[first] + team.first(); j < end; j += TeamSize) {
                 f(j);
             }
         }
@@ -61,9 +58,9 @@ struct GridNeighbours {
 struct BruteNeighbours {
     Index count;
 
-    template <class F>
-    WEIR_HD void forEachCandidate(Index, F&& f, Team team = Team{}) const {
-        for (Index j = team.rank; j < count; j += team.size) {
+    template <class F, int TeamSize = 1>
+    WEIR_HD void forEachCandidate(Index, F&& f, Team<TeamSize> team = {}) const {
+        for (Index j = team.first(); j < count; j += TeamSize) {
             f(j);
         }
     }

@@ -78,9 +78,9 @@ WEIR_HD inline bool claimFault(FaultRecord* record, FaultCode code) {
 
 // Eq. 2 with poly6: density of particle i (its pressure follows by eq. 3 where it is needed).
 // A team (core/team.h) shares the neighbours; every lane of it must call.
-template <class Neighbours>
+template <class Neighbours, int TeamSize = 1>
 WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Neighbours& nb,
-                                      const SphParams& params, Team team = Team{}) {
+                                      const SphParams& params, Team<TeamSize> team = {}) {
     const Vec3 xi = pv.position(i);
     Real sum = 0;
     nb.forEachCandidate(
@@ -117,9 +117,9 @@ WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r,
 
 // Acceleration of particle i: (pressure + viscous force density) / rho_i + gravity. A team
 // (core/team.h) shares the neighbours, and every lane gets the whole acceleration.
-template <class Neighbours>
+template <class Neighbours, int TeamSize = 1>
 WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighbours& nb,
-                                   const SphParams& params, Team team = Team{}) {
+                                   const SphParams& params, Team<TeamSize> team = {}) {
     const Vec3 xi = pv.position(i);
     const Real4 vi = pv.vel[i];
     const Real rhoi = vi.w, pi = pressureFromDensity(params, rhoi), h2 = params.kernel.h2;
@@ -143,9 +143,9 @@ WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighb
     return force / rhoi + params.gravity + walls;
 }
 
-template <class Neighbours>
+template <class Neighbours, int TeamSize = 1>
 WEIR_HD inline void accelerationAt(Index i, const ParticleView& pv, const Neighbours& nb,
-                                   const SphParams& params, Team team = Team{}) {
+                                   const SphParams& params, Team<TeamSize> team = {}) {
     const Vec3 a = accelerationOf(i, pv, nb, params, team);
     if (team.leader()) {
         pv.acc[i] = Real4::from(a);
@@ -274,11 +274,11 @@ WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams
 // Force and displacement fused: the new state goes to separate arrays, since other particles
 // still read this one's position and velocity in the same pass. Saves the acceleration array
 // and a pass over the particles.
-template <class Neighbours>
+template <class Neighbours, int TeamSize = 1>
 WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                              const SphParams& params, const ObstacleView& obstacles,
                                              FaultRecord* fault, StepClock* clock, Real4* newPos,
-                                             Real4* newVel, Team team = Team{}) {
+                                             Real4* newVel, Team<TeamSize> team = {}) {
     const Real4 v4 = pv.vel[i];
     if (clock->dt == Real(0) || isGhost(pv.pos[i])) {  // a no-op step, or a ghost: carried over
         if (team.leader()) {

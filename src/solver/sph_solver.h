@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <numeric>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "cluster/slab.h"
@@ -319,14 +320,32 @@ class SphSolver final : public RankPart {
     template <class Neighbours>
     void computeDensityPressure(const Neighbours& nb, const StepClock* clock = nullptr) {
         exec_.stageBegin("density");
+        switch (teamSizeFor<Neighbours>()) {
+            case 4:
+                if constexpr (teamsFit<Neighbours>()) {
+                    densityPass<4>(nb, clock);
+                }
+                break;
+            case 2:
+                if constexpr (teamsFit<Neighbours>()) {
+                    densityPass<2>(nb, clock);
+                }
+                break;
+            default:
+                densityPass<1>(nb, clock);
+        }
+        exec_.stageEnd("density");
+    }
+
+    template <int TeamSize, class Neighbours>
+    void densityPass(const Neighbours& nb, const StepClock* clock) {
         const ParticleView pv = view();
         const SphParams params = params_;
-        exec_.forEachTeam(n_, teamSize(), [=] WEIR_HD(Index i, Team team) {
+        exec_.template forEachTeam<TeamSize>(n_, [=] WEIR_HD(Index i, Team<TeamSize> team) {
             if (clock == nullptr || clock->dt != Real(0)) {
                 densityPressureAt(i, pv, nb, params, team);
             }
         });
-        exec_.stageEnd("density");
     }
 
     template <class Neighbours>
@@ -347,6 +366,27 @@ class SphSolver final : public RankPart {
     template <class Neighbours>
     void accelerateAndIntegrate(const Neighbours& nb) {
         exec_.stageBegin("force");
+        switch (teamSizeFor<Neighbours>()) {
+            case 4:
+                if constexpr (teamsFit<Neighbours>()) {
+                    accelerateAndIntegratePass<4>(nb);
+                }
+                break;
+            case 2:
+                if constexpr (teamsFit<Neighbours>()) {
+                    accelerateAndIntegratePass<2>(nb);
+                }
+                break;
+            default:
+                accelerateAndIntegratePass<1>(nb);
+        }
+        pos_.swap(sortedPos_);
+        vel_.swap(sortedVel_);
+        exec_.stageEnd("force");
+    }
+
+    template <int TeamSize, class Neighbours>
+    void accelerateAndIntegratePass(const Neighbours& nb) {
         const ParticleView pv = view();
         const SphParams params = params_;
         const ObstacleView obstacles{boxes_.data(), int(boxes_.size()), spheres_.data(),
@@ -354,13 +394,10 @@ class SphSolver final : public RankPart {
         FaultRecord* fault = fault_.data();
         StepClock* clock = clock_.data();
         Real4 *newPos = sortedPos_.data(), *newVel = sortedVel_.data();
-        exec_.forEachTeam(n_, teamSize(), [=] WEIR_HD(Index i, Team team) {
+        exec_.template forEachTeam<TeamSize>(n_, [=] WEIR_HD(Index i, Team<TeamSize> team) {
             accelerateAndIntegrateAt(i, pv, nb, params, obstacles, fault, clock, newPos, newVel,
                                      team);
         });
-        pos_.swap(sortedPos_);
-        vel_.swap(sortedVel_);
-        exec_.stageEnd("force");
     }
 
     void integrate() {
@@ -771,27 +808,34 @@ class SphSolver final : public RankPart {
     }
 
     // Lanes per particle in the dense path's density and force passes (core/team.h): more than
-    // one where the particles alone would leave the GPU idle; WEIR_TEAM=1, 2, 4 or 8 sets it
+    // one on the GPU where the particles alone would leave it idle; WEIR_TEAM=1, 2 or 4 sets it
     // (speed experiments). The paper's grid and brute force keep one thread per particle.
     int teamSize() const {
-        if (!Exec::isDevice || mode_ != NeighbourMode::Dense) {
-            return 1;
-        }
         if (teamOverride_ > 0) {
             return teamOverride_;
         }
-        const std::int64_t wanted = std::int64_t(2) * exec_.residentThreads();
+        const std::int64_t wanted = exec_.residentThreads();
         int size = 1;
-        while (size < 8 && std::int64_t(n_) * size * 2 <= wanted) {
+        while (size < 4 && std::int64_t(n_) * size * 2 <= wanted) {
             size *= 2;
         }
         return size;
     }
 
+    // Teams serve the dense path on the GPU; elsewhere a thread works alone.
+    template <class Neighbours>
+    static constexpr bool teamsFit() {
+        return Exec::isDevice && std::is_same_v<Neighbours, DenseGridNeighbours>;
+    }
+    template <class Neighbours>
+    int teamSizeFor() const {
+        return teamsFit<Neighbours>() ? teamSize() : 1;
+    }
+
     static int teamOverride() {
         const char* text = std::getenv("WEIR_TEAM");
         const int wanted = text != nullptr ? std::atoi(text) : 0;
-        return wanted >= 8 ? 8 : (wanted >= 4 ? 4 : (wanted >= 2 ? 2 : (wanted == 1 ? 1 : 0)));
+        return wanted >= 4 ? 4 : (wanted >= 2 ? 2 : (wanted == 1 ? 1 : 0));
     }
 
     static constexpr double kNoTarget = 1e300;
