@@ -320,32 +320,16 @@ class SphSolver final : public RankPart {
     template <class Neighbours>
     void computeDensityPressure(const Neighbours& nb, const StepClock* clock = nullptr) {
         exec_.stageBegin("density");
-        switch (teamSizeFor<Neighbours>()) {
-            case 4:
-                if constexpr (teamsFit<Neighbours>()) {
-                    densityPass<4>(nb, clock);
-                }
-                break;
-            case 2:
-                if constexpr (teamsFit<Neighbours>()) {
-                    densityPass<2>(nb, clock);
-                }
-                break;
-            default:
-                densityPass<1>(nb, clock);
-        }
-        exec_.stageEnd("density");
-    }
-
-    template <int TeamSize, class Neighbours>
-    void densityPass(const Neighbours& nb, const StepClock* clock) {
+        // One thread per particle: a team measured slower here (bench/NOTES.md #12), its lanes
+        // each paying the whole walk over the rows for a few candidates.
         const ParticleView pv = view();
         const SphParams params = params_;
-        exec_.template forEachTeam<TeamSize>(n_, [=] WEIR_HD(Index i, Team<TeamSize> team) {
+        exec_.forEach(n_, [=] WEIR_HD(Index i) {
             if (clock == nullptr || clock->dt != Real(0)) {
-                densityPressureAt(i, pv, nb, params, team);
+                densityPressureAt(i, pv, nb, params);
             }
         });
+        exec_.stageEnd("density");
     }
 
     template <class Neighbours>
@@ -366,19 +350,14 @@ class SphSolver final : public RankPart {
     template <class Neighbours>
     void accelerateAndIntegrate(const Neighbours& nb) {
         exec_.stageBegin("force");
-        switch (teamSizeFor<Neighbours>()) {
-            case 4:
-                if constexpr (teamsFit<Neighbours>()) {
-                    accelerateAndIntegratePass<4>(nb);
-                }
-                break;
-            case 2:
-                if constexpr (teamsFit<Neighbours>()) {
-                    accelerateAndIntegratePass<2>(nb);
-                }
-                break;
-            default:
+        if constexpr (teamsFit<Neighbours>()) {
+            if (teamSize() == 2) {
+                accelerateAndIntegratePass<2>(nb);
+            } else {
                 accelerateAndIntegratePass<1>(nb);
+            }
+        } else {
+            accelerateAndIntegratePass<1>(nb);
         }
         pos_.swap(sortedPos_);
         vel_.swap(sortedVel_);
@@ -807,19 +786,15 @@ class SphSolver final : public RankPart {
         return std::max(1, denseCellsPerRadius(setup.grid, setup.particleCount()));
     }
 
-    // Lanes per particle in the dense path's density and force passes (core/team.h): more than
-    // one on the GPU where the particles alone would leave it idle; WEIR_TEAM=1, 2 or 4 sets it
-    // (speed experiments). The paper's grid and brute force keep one thread per particle.
+    // Lanes per particle in the dense path's force pass on the GPU (core/team.h): two where one
+    // thread per particle would leave the GPU half idle (at most half its resident threads;
+    // bench/NOTES.md #12), else one. WEIR_TEAM=1 or 2 sets it (speed experiments). The paper's
+    // grid and brute force keep one thread per particle.
     int teamSize() const {
         if (teamOverride_ > 0) {
             return teamOverride_;
         }
-        const std::int64_t wanted = exec_.residentThreads();
-        int size = 1;
-        while (size < 4 && std::int64_t(n_) * size * 2 <= wanted) {
-            size *= 2;
-        }
-        return size;
+        return 2 * std::int64_t(n_) <= exec_.residentThreads() ? 2 : 1;
     }
 
     // Teams serve the dense path on the GPU; elsewhere a thread works alone.
@@ -827,15 +802,11 @@ class SphSolver final : public RankPart {
     static constexpr bool teamsFit() {
         return Exec::isDevice && std::is_same_v<Neighbours, DenseGridNeighbours>;
     }
-    template <class Neighbours>
-    int teamSizeFor() const {
-        return teamsFit<Neighbours>() ? teamSize() : 1;
-    }
 
     static int teamOverride() {
         const char* text = std::getenv("WEIR_TEAM");
         const int wanted = text != nullptr ? std::atoi(text) : 0;
-        return wanted >= 4 ? 4 : (wanted >= 2 ? 2 : (wanted == 1 ? 1 : 0));
+        return wanted >= 2 ? 2 : (wanted == 1 ? 1 : 0);
     }
 
     static constexpr double kNoTarget = 1e300;
