@@ -25,6 +25,7 @@ struct ParticleView {
     Real4* pos;  // x, y, z, ghost flag (isGhost)
     Real4* vel;  // vx, vy, vz, density
     Real4* acc;  // ax, ay, az, unused
+    Real* pressureTerm;  // pressureTermOf(density), by the density stage for the force stage
     Index count;
     BoundaryView boundary;  // static wall particles (physics/boundary.h); empty: none
 
@@ -76,6 +77,14 @@ WEIR_HD inline bool claimFault(FaultRecord* record, FaultCode code) {
 #endif
 }
 
+// What the force stage needs of a neighbour's pressure: p / rho^2 for the symmetric pressure
+// force, p for the paper's eq. 4 (see pairForce). Computed once per particle by the density
+// stage rather than once per pair: the equation of state is a quarter of the pair's arithmetic.
+WEIR_HD inline Real pressureTermOf(const SphParams& params, Real rho) {
+    const Real p = pressureFromDensity(params, rho);
+    return params.pressureForce == PressureForm::Symmetric ? p / (rho * rho) : p;
+}
+
 // Eq. 2 with poly6: density of particle i (its pressure follows by eq. 3 where it is needed).
 // A team (core/team.h) shares the neighbours; every lane of it must call.
 template <class Neighbours, int TeamSize = 1>
@@ -94,7 +103,9 @@ WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Nei
         params.walls == WallKind::Simple
             ? wallDensity(params.wallWeight, params.boxMin, params.boxMax, params.restDensity, xi)
             : boundaryDensity(pv.boundary, params.kernel, xi);
-    pv.vel[i].w = params.mass * sum + walls;
+    const Real rho = params.mass * sum + walls;
+    pv.vel[i].w = rho;
+    pv.pressureTerm[i] = pressureTermOf(params, rho);
 }
 
 // The pressure (spiky gradient) and viscous (eq. 5, its Laplacian) force density on i from j,
@@ -102,15 +113,16 @@ WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Nei
 // or by the symmetric form rho_i m_j (p_i / rho_i^2 + p_j / rho_j^2) (Monaghan 1992): both
 // conserve momentum, but only the latter tends to grad p as particles get finer; eq. 4 tends to
 // grad p / 2 (its p_i term vanishes over a full neighbourhood), so a tank at rest under eq. 4
-// holds twice the hydrostatic pressure. piOverRhoi2Rhoi = p_i / rho_i; rhoi for the symmetric form.
-WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r, Real invR, Real pi,
-                              Real pj, Real rhoi, Real rhoj, const Vec3& vi, const Vec3& vj) {
-    const Real invRhoj = reciprocal(rhoj);
-    const Real massOverRho = params.mass * invRhoj;
-    const Real pressureSum = params.pressureForce == PressureForm::Symmetric
-                                 ? rhoi * (pi / (rhoi * rhoi) + pj * invRhoj * invRhoj) * rhoj
-                                 : Real(0.5) * (pi + pj);
-    Real pressure = -massOverRho * pressureSum * spikyGradientFactor(params.kernel, r, invR);
+// holds twice the hydrostatic pressure. termI, termJ: pressureTermOf the two densities, so the
+// symmetric form is m_j rho_i (termI + termJ).
+WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r, Real invR,
+                              Real termI, Real termJ, Real rhoi, Real rhoj, const Vec3& vi,
+                              const Vec3& vj) {
+    const Real massOverRho = params.mass * reciprocal(rhoj);
+    const Real pressureDensity = params.pressureForce == PressureForm::Symmetric
+                                     ? params.mass * rhoi * (termI + termJ)
+                                     : massOverRho * Real(0.5) * (termI + termJ);
+    Real pressure = -pressureDensity * spikyGradientFactor(params.kernel, r, invR);
     Real viscous = params.viscosity * massOverRho * viscosityLaplacian(params.kernel, r);
     return rVec * pressure + (vj - vi) * viscous;
 }
@@ -123,6 +135,7 @@ WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighb
     const Vec3 xi = pv.position(i);
     const Real4 vi = pv.vel[i];
     const Real rhoi = vi.w, pi = pressureFromDensity(params, rhoi), h2 = params.kernel.h2;
+    const Real termI = pv.pressureTerm[i];
     Vec3 force;
     nb.forEachCandidate(i, [&](Index j) {
         Vec3 rVec = xi - pv.position(j);
@@ -130,8 +143,8 @@ WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighb
         if (r2 < h2 && r2 > Real(0)) {
             const Real4 vj = pv.vel[j];
             const Real invR = reciprocalSqrt(r2);
-            force += pairForce(params, rVec, r2 * invR, invR, pi, pressureFromDensity(params, vj.w),
-                               rhoi, vj.w, vi.xyz(), vj.xyz());
+            force += pairForce(params, rVec, r2 * invR, invR, termI, pv.pressureTerm[j], rhoi,
+                               vj.w, vi.xyz(), vj.xyz());
         }
     }, team);
     force = Vec3(team.sum(force.x), team.sum(force.y), team.sum(force.z));

@@ -53,8 +53,9 @@ NeighbourMode resolveNeighbourMode(NeighbourMode mode, const GridSpec& grid, std
 }
 
 std::size_t bytesPerParticleEstimate(NeighbourMode mode, std::size_t cellIdBytes) {
-    // Position and velocity (padded vectors, density in the velocity's fourth), id.
-    std::size_t bytes = 2 * sizeof(Real4) + sizeof(Index);
+    // Position and velocity (padded vectors, density in the velocity's fourth), id, pressure
+    // term.
+    std::size_t bytes = 2 * sizeof(Real4) + sizeof(Index) + sizeof(Real);
     switch (mode) {
         case NeighbourMode::Brute:
             bytes += sizeof(Real4);  // acceleration

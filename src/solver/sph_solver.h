@@ -401,7 +401,7 @@ class SphSolver final : public RankPart {
         walls.pos = boundaryPos_.data();
         walls.cellStart = boundaryStart_.data();
         walls.near = boundaryNear_.data();
-        return {pos_.data(), vel_.data(), acc_.data(), n_, walls};
+        return {pos_.data(), vel_.data(), acc_.data(), pressureTerm_.data(), n_, walls};
     }
 
     void download(HostParticles& out) override {
@@ -438,6 +438,7 @@ class SphSolver final : public RankPart {
         std::size_t bytes =
             (pos_.size() + vel_.size() + acc_.size() + sortedPos_.size() + sortedVel_.size()) *
                 sizeof(Real4) +
+            pressureTerm_.size() * sizeof(Real) +
             (id_.size() + sortedId_.size() + boundaryStart_.size()) * sizeof(Index) +
             boundaryPos_.size() * sizeof(Real4) + boundaryNear_.size() +
             // distributed runs only: selection flags and particles staged for other ranks
@@ -768,6 +769,7 @@ class SphSolver final : public RankPart {
 
     // Sizes the scratch arrays of the step to the particle count.
     void fitScratch() {
+        pressureTerm_.resize(std::size_t(n_));
         if (mode_ != NeighbourMode::Dense) {
             acc_.resize(std::size_t(n_));  // the dense path fuses force and displacement
         }
@@ -826,6 +828,7 @@ class SphSolver final : public RankPart {
     double typicalStep_ = 0;  // mean dt of the last batch, to size the next
     bool targetSet_ = false;
     Buffer<Real4> pos_, vel_, acc_, sortedPos_, sortedVel_;
+    Buffer<Real> pressureTerm_;  // the density stage's pressureTermOf, for the force stage
     Buffer<Index> id_, sortedId_;
     Buffer<Index> flags_;                // distributed runs: selection flags and their sums
     Buffer<Real4> stagePos_, stageVel_;  // distributed runs: particles on their way to the host
