@@ -34,7 +34,6 @@ struct DenseGridNeighbours {
     GridSpec spec;           // the cells the particles were grouped by
     Real h2;                 // squared smoothing radius
     int reach;               // cells per smoothing radius: rows span +-reach cells
-    bool teamSplitsRows = false;  // a team's lanes take rows in turn, else split each run
 
     // Calls f(j) for every particle j that can lie within h of particle i (i included): the
     // X runs of the 5 x 5 rows around i's cell, less the rows whose (Y, Z) slab is farther than
@@ -42,8 +41,7 @@ struct DenseGridNeighbours {
     // chord visits fewer candidates but measured slower (bench/NOTES.md: the branchy bounds cost
     // more than the candidates they save), so runs stay whole. Plain nested loops: the same walk
     // written as a row iterator measured 16% slower on the GPU.
-    // A team of several lanes (core/team.h) deals the rows of each Y slab out in turn (lanes on
-    // different rows of the same slab at once: converged) or splits each run between its lanes.
+    // A team of several lanes (core/team.h) splits each run between its lanes.
     template <class F, int TeamSize = 1>
     WEIR_HD void forEachCandidate(Index i, F&& f, Team<TeamSize> team = {}) const {
         const Real4 p = pos[i];
@@ -56,23 +54,21 @@ struct DenseGridNeighbours {
         const int zHi = c.z + reach < nz ? c.z + reach : nz - 1;
         const int xLo = c.x >= reach ? c.x - reach : 0;
         const int xHi = c.x + reach < nx ? c.x + reach : nx - 1;
-        const bool rows = TeamSize > 1 && teamSplitsRows, runs = TeamSize > 1 && !teamSplitsRows;
-        const int zFirst = zLo + (rows ? team.first() : 0), zStep = rows ? TeamSize : 1;
-        const int jFirst = runs ? team.first() : 0, jStep = runs ? TeamSize : 1;
         for (int y = yLo; y <= yHi; ++y) {
             const Real dy = slabDistance(p.y, spec.origin.y + Real(y) * spec.cellSize);
             const Real remY = h2 - dy * dy;
             if (remY <= Real(0)) {
                 continue;
             }
-            for (int z = zFirst; z <= zHi; z += zStep) {
+            for (int z = zLo; z <= zHi; ++z) {
                 const Real dz = slabDistance(p.z, spec.origin.z + Real(z) * spec.cellSize);
                 if (remY - dz * dz <= Real(0)) {
                     continue;
                 }
                 const CellKey rowStart = denseCellIndex(0, y, z, nx, nz);
                 const Index end = cellBound[rowStart + CellKey(xHi) + 1];
-                for (Index j = cellBound[rowStart + CellKey(xLo)] + jFirst; j < end; j += jStep) {
+                for (Index j = cellBound[rowStart + CellKey(xLo)] + team.first(); j < end;
+                     j += TeamSize) {
                     f(j);
                 }
             }

@@ -218,11 +218,7 @@ class SphSolver final : public RankPart {
         }
     }
 
-    DenseGridNeighbours denseView() const {
-        DenseGridNeighbours view = dense_.view(pos_.data(), params_.kernel.h);
-        view.teamSplitsRows = teamSplitsRows_;
-        return view;
-    }
+    DenseGridNeighbours denseView() const { return dense_.view(pos_.data(), params_.kernel.h); }
 
     template <class F>
     void withNeighbours(F&& f) {
@@ -324,27 +320,16 @@ class SphSolver final : public RankPart {
     template <class Neighbours>
     void computeDensityPressure(const Neighbours& nb, const StepClock* clock = nullptr) {
         exec_.stageBegin("density");
-        if constexpr (teamsFit<Neighbours>()) {
-            if (densityTeamSize() == 2) {
-                densityPass<2>(nb, clock);
-            } else {
-                densityPass<1>(nb, clock);
-            }
-        } else {
-            densityPass<1>(nb, clock);
-        }
-        exec_.stageEnd("density");
-    }
-
-    template <int TeamSize, class Neighbours>
-    void densityPass(const Neighbours& nb, const StepClock* clock) {
+        // One thread per particle: a team measured slower here (bench/NOTES.md #12), its lanes
+        // each paying the whole walk over the rows for a few candidates.
         const ParticleView pv = view();
         const SphParams params = params_;
-        exec_.template forEachTeam<TeamSize>(n_, [=] WEIR_HD(Index i, Team<TeamSize> team) {
+        exec_.forEach(n_, [=] WEIR_HD(Index i) {
             if (clock == nullptr || clock->dt != Real(0)) {
-                densityPressureAt(i, pv, nb, params, team);
+                densityPressureAt(i, pv, nb, params);
             }
         });
+        exec_.stageEnd("density");
     }
 
     template <class Neighbours>
@@ -820,15 +805,6 @@ class SphSolver final : public RankPart {
         return Exec::isDevice && std::is_same_v<Neighbours, DenseGridNeighbours>;
     }
 
-    int densityTeamSize() const {
-        const char* text = std::getenv("WEIR_TEAM_DENSITY");
-        return text != nullptr && std::atoi(text) == 2 ? 2 : 1;
-    }
-    static bool teamSplitsRows() {
-        const char* text = std::getenv("WEIR_TEAM_SPLIT");
-        return text != nullptr && std::string(text) == "rows";
-    }
-
     static int teamOverride() {
         const char* text = std::getenv("WEIR_TEAM");
         const int wanted = text != nullptr ? std::atoi(text) : 0;
@@ -870,7 +846,6 @@ class SphSolver final : public RankPart {
     int graphParity_ = 0;
     StageTimes times_;
     int teamOverride_ = teamOverride();  // 0: chosen by size
-    bool teamSplitsRows_ = teamSplitsRows();
 };
 
 }  // namespace weir
