@@ -30,31 +30,35 @@ CudaExec::~CudaExec() {
     }
 }
 
-void CudaExec::sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* valuesIn,
-                         Index* valuesOut, Index n, int keyBits) {
+namespace {
+
+// CUB's stable radix sort of (key, value) pairs on the low keyBits bits, with scratch kept in
+// `temp` between calls.
+template <class Key>
+void cubSortPairs(DeviceBuffer<unsigned char>& temp, cudaStream_t stream, const Key* keysIn,
+                  Key* keysOut, const Index* valuesIn, Index* valuesOut, Index n, int keyBits) {
     std::size_t bytes = 0;
     WEIR_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keysIn, keysOut, valuesIn,
-                                                    valuesOut, n, 0, keyBits, stream_));
-    if (sortTemp_.size() < bytes) {
-        sortTemp_.resize(bytes);
+                                                    valuesOut, n, 0, keyBits, stream));
+    if (temp.size() < bytes) {
+        temp.resize(bytes);
     }
-    bytes = sortTemp_.size();
-    WEIR_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(sortTemp_.data(), bytes, keysIn, keysOut,
-                                                    valuesIn, valuesOut, n, 0, keyBits, stream_));
+    bytes = temp.size();
+    WEIR_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(temp.data(), bytes, keysIn, keysOut, valuesIn,
+                                                    valuesOut, n, 0, keyBits, stream));
+}
+
+}  // namespace
+
+void CudaExec::sortPairs(const CellKey* keysIn, CellKey* keysOut, const Index* valuesIn,
+                         Index* valuesOut, Index n, int keyBits) {
+    cubSortPairs(sortTemp_, stream_, keysIn, keysOut, valuesIn, valuesOut, n, keyBits);
 }
 
 // The 64-bit cell ids of grids past 1024 cells per axis: only keyBits bits, so fewer passes.
 void CudaExec::sortPairs(const WideCellKey* keysIn, WideCellKey* keysOut, const Index* valuesIn,
                          Index* valuesOut, Index n, int keyBits) {
-    std::size_t bytes = 0;
-    WEIR_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keysIn, keysOut, valuesIn,
-                                                    valuesOut, n, 0, keyBits, stream_));
-    if (sortTemp_.size() < bytes) {
-        sortTemp_.resize(bytes);
-    }
-    bytes = sortTemp_.size();
-    WEIR_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(sortTemp_.data(), bytes, keysIn, keysOut,
-                                                    valuesIn, valuesOut, n, 0, keyBits, stream_));
+    cubSortPairs(sortTemp_, stream_, keysIn, keysOut, valuesIn, valuesOut, n, keyBits);
 }
 
 void CudaExec::inclusiveScan(const Index* in, Index* out, Index n) {
