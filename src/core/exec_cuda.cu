@@ -17,10 +17,6 @@ CudaExec::CudaExec() {
     WEIR_CUDA_CHECK(cudaDeviceGetAttribute(&major, cudaDevAttrComputeCapabilityMajor, device));
     WEIR_CUDA_CHECK(
         cudaDeviceGetAttribute(&multiprocessors_, cudaDevAttrMultiProcessorCount, device));
-    if (const char* block = std::getenv("WEIR_BLOCK"); block != nullptr) {  // experiment
-        const int wanted = std::atoi(block);
-        blockSize = wanted == 64 || wanted == 128 ? wanted : kBlockSize;
-    }
     const char* pdl = std::getenv("WEIR_PDL");
     programmaticLaunch = major >= 9 && !(pdl != nullptr && std::string(pdl) == "0");
 }

@@ -116,7 +116,6 @@ class CudaExec {
     using Buffer = DeviceBuffer<T>;
     static constexpr bool isDevice = true;
     static constexpr int kBlockSize = 256;
-    int blockSize = kBlockSize;  // threads per block of forEach launches (at most kBlockSize)
 
     CudaExec();
     ~CudaExec();
@@ -129,12 +128,11 @@ class CudaExec {
         if (n <= 0) {
             return;
         }
-        const int block = blockSize;
-        unsigned blocks = unsigned((std::int64_t(n) + block - 1) / block);
+        unsigned blocks = unsigned((std::int64_t(n) + kBlockSize - 1) / kBlockSize);
         if (programmaticLaunch) {
             cudaLaunchConfig_t config{};
             config.gridDim = dim3(blocks);
-            config.blockDim = dim3(block);
+            config.blockDim = dim3(kBlockSize);
             config.dynamicSmemBytes = 0;
             config.stream = stream_;
             cudaLaunchAttribute attribute{};
@@ -144,7 +142,7 @@ class CudaExec {
             config.numAttrs = 1;
             WEIR_CUDA_CHECK(cudaLaunchKernelEx(&config, forEachKernel<F>, n, f));
         } else {
-            forEachKernel<<<blocks, block, 0, stream_>>>(n, f);
+            forEachKernel<<<blocks, kBlockSize, 0, stream_>>>(n, f);
         }
         WEIR_CUDA_CHECK(cudaGetLastError());
 #ifndef NDEBUG

@@ -785,12 +785,7 @@ class SphSolver final : public RankPart {
     // Cells per smoothing radius of the dense table (1 where even the grid of h cells is too big
     // for it: the dense table is then unused).
     static int denseReach(const SimulationSetup& setup) {
-        const int fits = std::max(1, denseCellsPerRadius(setup.grid, setup.particleCount()));
-        const char* text = std::getenv("WEIR_DENSE_REACH");  // experiment: 1 (h cells) or 3
-        if (text != nullptr && std::atoi(text) >= 1 && std::atoi(text) <= 3) {
-            return fits == 2 || std::atoi(text) <= fits ? std::atoi(text) : fits;
-        }
-        return fits;
+        return std::max(1, denseCellsPerRadius(setup.grid, setup.particleCount()));
     }
 
     // Lanes per particle in the dense path's force pass on the GPU (core/team.h): two where one
