@@ -138,6 +138,13 @@ class DenseGrid {
     // moves every particle anyway.
     template <class Place, class Discard>
     void build(Exec& exec, const Real4* pos, Index n, Place place, Discard discard) {
+        build(exec, pos, n, place, discard, [] WEIR_HD() {});
+    }
+
+    // The same, calling once() from one thread of the build's first pass: a one-thread task that
+    // would otherwise be a launch of its own (the solver's start of a step).
+    template <class Place, class Discard, class Once>
+    void build(Exec& exec, const Real4* pos, Index n, Place place, Discard discard, Once once) {
         // The particle count does not change between steps, nor does the grid.
         keys_.resize(std::size_t(n));
         tickets_.resize(std::size_t(n));
@@ -152,7 +159,12 @@ class DenseGrid {
         Index* bound = cellBound_.data();
         Index* slotParticle = slotParticle_.data();
         // 1. Count: bound[c + 1] = particles in cell c; each particle's ticket is its arrival.
-        exec.forEach(Index(cells + 2), [=] WEIR_HD(Index c) { bound[c] = 0; });
+        exec.forEach(Index(cells + 2), [=] WEIR_HD(Index c) {
+            bound[c] = 0;
+            if (c == 0) {
+                once();
+            }
+        });
         exec.forEach(n, [=] WEIR_HD(Index i) {
             if (discard(i)) {
                 keys[i] = discarded;  // not counted: no ticket, no place (and no atomic on one

@@ -163,7 +163,8 @@ class SphSolver final : public RankPart {
     }
 
     // One step, paper §5-6: separate stages launched in sequence, bracketed by the one-thread
-    // stages that choose dt and move the clock on (physics/time_step.h).
+    // stages that choose dt and move the clock on (physics/time_step.h; the dense path runs the
+    // first inside its grid build).
     void step() {
         switch (mode_) {
             case NeighbourMode::Grid:
@@ -173,8 +174,7 @@ class SphSolver final : public RankPart {
                 computeAcceleration(sparse_.view());
                 break;
             case NeighbourMode::Dense:
-                buildGrid();
-                beginStep();
+                buildGrid(true);  // begins the step in its first pass: one launch fewer
                 computeDensityPressure(denseView(), clock_.data());
                 accelerateAndIntegrate(denseView());
                 break;
@@ -234,7 +234,8 @@ class SphSolver final : public RankPart {
         }
     }
 
-    void buildGrid() {
+    // beginsStep: the dense build also runs beginStep() (in a pass it makes anyway).
+    void buildGrid(bool beginsStep = false) {
         exec_.stageBegin("grid");
         if (mode_ == NeighbourMode::Grid) {
             sparse_.build(exec_, pos_.data(), n_);
@@ -250,6 +251,8 @@ class SphSolver final : public RankPart {
             // left its slab (handed over already), and arriving ghosts become this step's.
             const bool distributed = distributed_;
             const Slab share = share_;
+            StepClock* clock = beginsStep ? clock_.data() : nullptr;
+            const SphParams params = params_;
             dense_.build(
                 exec_, pos, n_,
                 [=] WEIR_HD(Index from, Index to) {
@@ -263,6 +266,11 @@ class SphSolver final : public RankPart {
                     return distributed &&
                            (pos[i].w == kGhostMark ||
                             (pos[i].w == Real(0) && !share.contains(share.coordinate(pos[i]))));
+                },
+                [=] WEIR_HD() {
+                    if (clock != nullptr) {
+                        weir::beginStep(*clock, params);
+                    }
                 });
             pos_.swap(sortedPos_);
             vel_.swap(sortedVel_);
