@@ -1,8 +1,8 @@
 // CUDA primitives: CUB radix sort and scan with persistent scratch, event timing, device info.
+#include <cstdlib>
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
 #include <cuda/functional>
-#include <cstdlib>
 #include <sstream>
 #include <string>
 

@@ -159,9 +159,8 @@ class CudaExec {
     void forEachTeam(Index n, F f) const {
         WEIR_REQUIRE(std::int64_t(n) * TeamSize < (std::int64_t(1) << 31),
                      "a team launch of " << n << " x " << TeamSize << " threads");
-        forEach(n * TeamSize, [=] __device__(Index t) {
-            f(t / TeamSize, Team<TeamSize>{int(t % TeamSize)});
-        });
+        forEach(n * TeamSize,
+                [=] __device__(Index t) { f(t / TeamSize, Team<TeamSize>{int(t % TeamSize)}); });
     }
 
     // Stable (key, value) radix sort on the low keyBits bits, by CUB.

@@ -22,9 +22,9 @@ namespace weir {
 // (pressure follows from density by eq. 3); the density stage reads only positions, so writing
 // it there races with nothing.
 struct ParticleView {
-    Real4* pos;  // x, y, z, ghost flag (isGhost)
-    Real4* vel;  // vx, vy, vz, density
-    Real4* acc;  // ax, ay, az, unused
+    Real4* pos;          // x, y, z, ghost flag (isGhost)
+    Real4* vel;          // vx, vy, vz, density
+    Real4* acc;          // ax, ay, az, unused
     Real* pressureTerm;  // pressureTermOf(density), by the density stage for the force stage
     Index count;
     BoundaryView boundary;  // static wall particles (physics/boundary.h); empty: none
@@ -86,19 +86,14 @@ WEIR_HD inline Real pressureTermOf(const SphParams& params, Real rho) {
 }
 
 // Eq. 2 with poly6: density of particle i (its pressure follows by eq. 3 where it is needed).
-// A team (core/team.h) shares the neighbours; every lane of it must call.
-template <class Neighbours, int TeamSize = 1>
+// One thread per particle: teams measured slower here (bench/NOTES.md #12, #14).
+template <class Neighbours>
 WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Neighbours& nb,
-                                      const SphParams& params, Team<TeamSize> team = {}) {
+                                      const SphParams& params) {
     const Vec3 xi = pv.position(i);
     Real sum = 0;
     nb.forEachCandidate(
-        i, [&](Index j) { sum += poly6(params.kernel, lengthSquared(xi - pv.position(j))); },
-        team);
-    sum = team.sum(sum);
-    if (!team.leader()) {
-        return;
-    }
+        i, [&](Index j) { sum += poly6(params.kernel, lengthSquared(xi - pv.position(j))); });
     const Real walls =
         params.walls == WallKind::Simple
             ? wallDensity(params.wallWeight, params.boxMin, params.boxMax, params.restDensity, xi)
@@ -137,16 +132,19 @@ WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighb
     const Real rhoi = vi.w, pi = pressureFromDensity(params, rhoi), h2 = params.kernel.h2;
     const Real termI = pv.pressureTerm[i];
     Vec3 force;
-    nb.forEachCandidate(i, [&](Index j) {
-        Vec3 rVec = xi - pv.position(j);
-        Real r2 = lengthSquared(rVec);
-        if (r2 < h2 && r2 > Real(0)) {
-            const Real4 vj = pv.vel[j];
-            const Real invR = reciprocalSqrt(r2);
-            force += pairForce(params, rVec, r2 * invR, invR, termI, pv.pressureTerm[j], rhoi,
-                               vj.w, vi.xyz(), vj.xyz());
-        }
-    }, team);
+    nb.forEachCandidate(
+        i,
+        [&](Index j) {
+            Vec3 rVec = xi - pv.position(j);
+            Real r2 = lengthSquared(rVec);
+            if (r2 < h2 && r2 > Real(0)) {
+                const Real4 vj = pv.vel[j];
+                const Real invR = reciprocalSqrt(r2);
+                force += pairForce(params, rVec, r2 * invR, invR, termI, pv.pressureTerm[j], rhoi,
+                                   vj.w, vi.xyz(), vj.xyz());
+            }
+        },
+        team);
     force = Vec3(team.sum(force.x), team.sum(force.y), team.sum(force.z));
     const Vec3 walls =
         params.walls == WallKind::Simple

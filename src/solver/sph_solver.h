@@ -328,8 +328,6 @@ class SphSolver final : public RankPart {
     template <class Neighbours>
     void computeDensityPressure(const Neighbours& nb, const StepClock* clock = nullptr) {
         exec_.stageBegin("density");
-        // One thread per particle: a team measured slower here (bench/NOTES.md #12), its lanes
-        // each paying the whole walk over the rows for a few candidates.
         const ParticleView pv = view();
         const SphParams params = params_;
         exec_.forEach(n_, [=] WEIR_HD(Index i) {
