@@ -18,6 +18,7 @@
 #include "io/atomic_file.h"
 #include "scene/scene.h"
 #include "scene/setup.h"
+#include "solver/simulation.h"
 
 namespace weir {
 

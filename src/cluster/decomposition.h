@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "cluster/slab.h"
+#include "core/slab.h"
 #include "core/vec3.h"
 
 namespace weir {

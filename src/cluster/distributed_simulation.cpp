@@ -13,7 +13,6 @@
 #include "cluster/particle_routing.h"
 #include "core/check.h"
 #include "physics/eos.h"
-#include "scene/seeding.h"
 
 namespace weir {
 
@@ -44,19 +43,20 @@ void addToHistogram(AxisHistogram& h, double c, std::int64_t weight) {
     h.counts[std::size_t(b)] += weight;
 }
 
-// The setup's particles inside `share`, with their global ids (seeds: the backend seeds only
-// those; `expected` of them, about, for its memory check).
+// The setup's particles inside `share`, with their global ids (a seeder: restricted to the
+// share; `expected` of them, about, for its memory check).
 SimulationSetup shareOf(const SimulationSetup& whole, const Slab& share, std::int64_t expected) {
     SimulationSetup part;
     part.params = whole.params;
     part.grid = whole.grid;
+    part.method = whole.method;
     part.obstacleBoxes = whole.obstacleBoxes;
     part.obstacleSpheres = whole.obstacleSpheres;
     part.boundary = whole.boundary;
-    part.share = share;
-    part.shareEstimate = expected;
     if (whole.particles.size() == 0) {
-        part.seeds = whole.seeds;  // seeded inside `share` by the backend
+        if (whole.seeder) {
+            part.seeder = whole.seeder->within(share, expected);  // seeded by the backend
+        }
         return part;
     }
     const HostParticles& p = whole.particles;
@@ -96,22 +96,10 @@ AxisHistogram setupHistogram(const SimulationSetup& setup, int axis, int bins) {
         }
         return h;
     }
-    // Seeds: every s-th lattice point along each axis, standing for s^3 points, about a
-    // million samples in all; the first rebalance corrects what sampling misses.
-    const SeedShapes shapes = setup.seeds.shapes();
-    for (const SeedLattice& lattice : setup.seeds.lattices) {
-        const std::int64_t s =
-            std::max<std::int64_t>(1, std::int64_t(std::cbrt(double(lattice.points()) / 1e6)));
-        for (std::int64_t k = s / 2; k < lattice.nz; k += s) {
-            for (std::int64_t j = s / 2; j < lattice.ny; j += s) {
-                for (std::int64_t i = s / 2; i < lattice.nx; i += s) {
-                    const Vec3d x = lattice.point((k * lattice.ny + j) * lattice.nx + i);
-                    if (keepSeed(shapes, lattice, x)) {
-                        addToHistogram(h, axis == 0 ? x.x : (axis == 1 ? x.y : x.z), s * s * s);
-                    }
-                }
-            }
-        }
+    // A seeder: a sample of the particles; the first rebalance corrects what sampling misses.
+    if (setup.seeder) {
+        setup.seeder->sample(axis,
+                             [&](double c, std::int64_t weight) { addToHistogram(h, c, weight); });
     }
     return h;
 }
@@ -132,7 +120,7 @@ DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend
     const std::int64_t expected =
         countsPerRank(histogram, decomposition_)[std::size_t(comm_.rank())];
     local_ =
-        makeSimulation(backend, mode, shareOf(setup, decomposition_.slab(comm_.rank()), expected));
+        makeRankPart(backend, mode, shareOf(setup, decomposition_.slab(comm_.rank()), expected));
     // NCCL wants one GPU per rank: ranks that share one (more ranks than GPUs) stage ghosts
     // through the host.
     bool gpuPerRank = true;
@@ -158,7 +146,7 @@ DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend
 }
 
 std::string DistributedSimulation::deviceName() const {
-    return local_->deviceName() + ", " + std::to_string(comm_.size()) + " ranks";
+    return local_->simulation().deviceName() + ", " + std::to_string(comm_.size()) + " ranks";
 }
 
 void DistributedSimulation::exchange() {
@@ -196,7 +184,7 @@ void DistributedSimulation::exchange() {
         stats_.ghosts = std::int64_t(ghosts.size());
     }
     stats_.arrivals = std::int64_t(arrivals.size());
-    stats_.owned = std::int64_t(local_->particleCount()) - stats_.ghosts;
+    stats_.owned = std::int64_t(local_->simulation().particleCount()) - stats_.ghosts;
     stats_.bytesSent = sent;
     stats_.exchangeSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -251,7 +239,7 @@ bool DistributedSimulation::agreeOnClock() {
     // Where the clock will be after this step: the device's own one-thread stages, run here on
     // the same inputs (so the host needs no read-back to know when a frame time is reached).
     predicted_ = clock;
-    weir::beginStep(predicted_, local_->params());
+    weir::beginStep(predicted_, local_->simulation().params());
     weir::endStep(predicted_);
     return faulted_;
 }
@@ -296,7 +284,7 @@ void DistributedSimulation::advance(int steps) {
 
 void DistributedSimulation::computeDensity() {
     exchange();
-    local_->computeDensity();
+    local_->simulation().computeDensity();
 }
 
 void DistributedSimulation::rebalance() {
@@ -333,11 +321,11 @@ void DistributedSimulation::fitGrid() {
     // Ghosts reach 2h past the borders; a radius more covers a step's moves before the next
     // exchange (particles past it would still be found, clamped into the end cells).
     local_->restrictGrid(decomposition_.slab(comm_.rank()),
-                         haloWidth_ + double(local_->params().kernel.h));
+                         haloWidth_ + double(local_->simulation().params().kernel.h));
 }
 
 FaultRecord DistributedSimulation::fault() {
-    const FaultRecord mine = local_->fault();
+    const FaultRecord mine = local_->simulation().fault();
     Bytes bytes(sizeof mine);
     std::memcpy(bytes.data(), &mine, sizeof mine);
     for (const Bytes& theirs : comm_.allGather(bytes)) {
@@ -368,7 +356,7 @@ void DistributedSimulation::download(HostParticles& out) {
                               " the run started with");
     }
     out.resize(every.size());
-    const SphParams& params = local_->params();
+    const SphParams& params = local_->simulation().params();
     for (std::size_t k = 0; k < every.size(); ++k) {
         const std::size_t i = std::size_t(every.id[k]);
         if (i >= every.size()) {

@@ -11,6 +11,7 @@
 #include "cluster/communicator.h"
 #include "cluster/decomposition.h"
 #include "cluster/nccl_transport.h"
+#include "cluster/rank_part.h"
 #include "solver/simulation.h"
 
 namespace weir {
@@ -55,20 +56,23 @@ class DistributedSimulation final : public Simulation {
     void download(HostParticles& out) override;
     // Collective: the first fault of any rank.
     FaultRecord fault() override;
-    void synchronize() override { local_->synchronize(); }
-    void runStage(Stage stage) override { local_->runStage(stage); }
-    void setTiming(bool on) override { local_->setTiming(on); }
-    const StageTimes& stageTimes() const override { return local_->stageTimes(); }
-    void clearStageTimes() override { local_->clearStageTimes(); }
-    Backend backend() const override { return local_->backend(); }
-    NeighbourMode neighbourMode() const override { return local_->neighbourMode(); }
+    void synchronize() override { local_->simulation().synchronize(); }
+    void runStage(Stage stage) override { local_->simulation().runStage(stage); }
+    void setTiming(bool on) override { local_->simulation().setTiming(on); }
+    const StageTimes& stageTimes() const override { return local_->simulation().stageTimes(); }
+    void clearStageTimes() override { local_->simulation().clearStageTimes(); }
+    Backend backend() const override { return local_->simulation().backend(); }
+    NeighbourMode neighbourMode() const override { return local_->simulation().neighbourMode(); }
     std::string deviceName() const override;
-    std::size_t bytesHeld() const override { return local_->bytesHeld(); }
-    Index occupiedCells() const override { return local_->occupiedCells(); }
-    const SphParams& params() const override { return local_->params(); }
+    std::size_t bytesHeld() const override { return local_->simulation().bytesHeld(); }
+    Index occupiedCells() const override { return local_->simulation().occupiedCells(); }
+    const SphParams& params() const override { return local_->simulation().params(); }
+    std::string method() const override { return local_->simulation().method(); }
+    // This rank's arrays (its owned particles and ghosts).
+    ParticleArrays particleArrays() override { return local_->simulation().particleArrays(); }
     Index particleCount() const override { return Index(total_); }
-    long long stepCount() const override { return local_->stepCount(); }
-    double time() const override { return local_->time(); }
+    long long stepCount() const override { return local_->simulation().stepCount(); }
+    double time() const override { return local_->simulation().time(); }
 
     // One step on every rank: exchange, agree on dt, step each slab (collective).
     void stepOnce();

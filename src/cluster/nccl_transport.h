@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cluster/communicator.h"
-#include "cluster/slab.h"
+#include "solver/particles.h"
 
 namespace weir {
 

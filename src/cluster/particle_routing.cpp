@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "physics/stages.h"
+#include "physics/particle_view.h"
 
 namespace weir {
 

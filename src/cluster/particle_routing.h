@@ -5,7 +5,7 @@
 
 #include "cluster/communicator.h"
 #include "cluster/decomposition.h"
-#include "cluster/slab.h"
+#include "solver/particles.h"
 
 namespace weir {
 

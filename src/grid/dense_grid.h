@@ -20,65 +20,28 @@
 #include "core/team.h"
 #include "core/vec3.h"
 #include "grid/cell_id.h"
+#include "grid/cell_walk.h"
 
 namespace weir {
 
-// Linear index of a cell, X fastest, then Z, then Y: the order of the paper's cell ids.
-WEIR_HD inline CellKey denseCellIndex(int x, int y, int z, int nx, int nz) {
-    return (CellKey(y) * CellKey(nz) + CellKey(z)) * CellKey(nx) + CellKey(x);
-}
-
 struct DenseGridNeighbours {
-    const Index* cellBound;  // totalCells + 1 entries
-    const Real4* pos;        // positions, in cell order
-    GridSpec spec;           // the cells the particles were grouped by
-    Real h2;                 // squared smoothing radius
-    int reach;               // cells per smoothing radius: rows span +-reach cells
+    CellTableView cells;  // the cells the particles were grouped by (grid/cell_walk.h)
+    const Real4* pos;     // positions, in cell order
+    Real h2;              // squared smoothing radius
+    int reach;            // cells per smoothing radius: rows span +-reach cells
 
     // Calls f(j) for every particle j that can lie within h of particle i (i included): the
-    // X runs of the 5 x 5 rows around i's cell, less the rows whose (Y, Z) slab is farther than
-    // h (the 4 corner rows and more near slab edges). Cutting each run further to the sphere's
-    // chord visits fewer candidates but measured slower (bench/NOTES.md: the branchy bounds cost
-    // more than the candidates they save), so runs stay whole. Plain nested loops: the same walk
-    // written as a row iterator measured 16% slower on the GPU.
-    // A team of several lanes (core/team.h) splits each run between its lanes.
+    // X runs of the 5 x 5 rows around i's cell (with h/2 cells), less the rows whose (Y, Z) slab
+    // is farther than h. The cell of i is the same function of the same position as in the
+    // build: the cell it was grouped in. A team of several lanes (core/team.h) splits each run
+    // between its lanes.
     template <class F, int TeamSize = 1>
     WEIR_HD void forEachCandidate(Index i, F&& f, Team<TeamSize> team = {}) const {
-        const Real4 p = pos[i];
-        // The same function of the same position as in the build: the cell it was grouped in.
-        const CellCoord c = spec.cellOf(p.x, p.y, p.z);
-        const int nx = spec.dims[0], ny = spec.dims[1], nz = spec.dims[2];
-        const int yLo = c.y >= reach ? c.y - reach : 0;
-        const int yHi = c.y + reach < ny ? c.y + reach : ny - 1;
-        const int zLo = c.z >= reach ? c.z - reach : 0;
-        const int zHi = c.z + reach < nz ? c.z + reach : nz - 1;
-        const int xLo = c.x >= reach ? c.x - reach : 0;
-        const int xHi = c.x + reach < nx ? c.x + reach : nx - 1;
-        for (int y = yLo; y <= yHi; ++y) {
-            const Real dy = slabDistance(p.y, spec.origin.y + Real(y) * spec.cellSize);
-            const Real remY = h2 - dy * dy;
-            if (remY <= Real(0)) {
-                continue;
+        cells.forEachRun(pos[i].xyz(), reach, h2, [&](Index first, Index end) {
+            for (Index j = first + team.first(); j < end; j += TeamSize) {
+                f(j);
             }
-            for (int z = zLo; z <= zHi; ++z) {
-                const Real dz = slabDistance(p.z, spec.origin.z + Real(z) * spec.cellSize);
-                if (remY - dz * dz <= Real(0)) {
-                    continue;
-                }
-                const CellKey rowStart = denseCellIndex(0, y, z, nx, nz);
-                const Index end = cellBound[rowStart + CellKey(xHi) + 1];
-                for (Index j = cellBound[rowStart + CellKey(xLo)] + team.first(); j < end;
-                     j += TeamSize) {
-                    f(j);
-                }
-            }
-        }
-    }
-
-    // Distance from coordinate v to the slab [lo, lo + cellSize] (0 inside).
-    WEIR_HD Real slabDistance(Real v, Real lo) const {
-        const Real hi = lo + spec.cellSize;
-        return v < lo ? lo - v : (v > hi ? v - hi : Real(0));
+        });
     }
 };
 
@@ -212,9 +175,11 @@ class DenseGrid {
     // Another box of cells of the same size (a distributed run's slab moved): buffers are kept.
     void setSpec(const GridSpec& spec) { spec_ = spec; }
 
+    // The cell table alone (grid/cell_walk.h), for queries around any point.
+    CellTableView cells() const { return {cellBound_.data(), spec_}; }
     // The neighbour view for positions `pos` in cell order and smoothing radius h.
     DenseGridNeighbours view(const Real4* pos, Real h) const {
-        return {cellBound_.data(), pos, spec_, h * h, reach_};
+        return {{cellBound_.data(), spec_}, pos, h * h, reach_};
     }
     // After build(exec, pos, n): the old index of the particle that is k-th in cell order.
     const Index* permutation() const { return permutation_.data(); }

@@ -9,8 +9,8 @@
 // Boundary particles never move, so they live apart from the fluid: their own arrays, sorted
 // once into a static uniform grid of h-wide cells built on the host at set-up (no per-step sort,
 // and the fluid's sorted arrays and grid stay as they were). A fluid particle visits the 9 X runs
-// of its 27 cells; a per-cell flag says whether any boundary particle lies in them, so particles
-// away from the walls pay one byte load and no loop.
+// of its 27 cells by the shared cell walk (grid/cell_walk.h); a per-cell flag says whether any
+// boundary particle lies in them, so particles away from the walls pay one byte load and no loop.
 #pragma once
 
 #include <cmath>
@@ -18,46 +18,33 @@
 
 #include "core/config.h"
 #include "core/vec3.h"
+#include "grid/cell_walk.h"
 #include "physics/kernels.h"
 
 namespace weir {
 
 struct BoundaryView {
     const Real4* pos = nullptr;           // x, y, z, psi; in cell order
-    const Index* cellStart = nullptr;     // cells + 1 entries: cell c holds [start[c], start[c+1])
     const unsigned char* near = nullptr;  // per cell: a boundary particle in its 27 cells
-    Vec3 origin;
-    Real invCellSize = 0;
-    int nx = 0, ny = 0, nz = 0;
+    CellTableView cells{};                // h-wide cells (grid/cell_walk.h)
     Index count = 0;
 
-    // Calls f(b) for every boundary particle b in the 27 cells around position x.
+    // Calls f(b) for every boundary particle b that can lie within h (the cell size) of x.
     template <class F>
     WEIR_HD void forEachNear(const Vec3& x, F&& f) const {
         if (count == 0) {
             return;
         }
-        const int cx = clampCell((x.x - origin.x) * invCellSize, nx);
-        const int cy = clampCell((x.y - origin.y) * invCellSize, ny);
-        const int cz = clampCell((x.z - origin.z) * invCellSize, nz);
-        if (!near[cellOf(cx, cy, cz)]) {
+        const CellCoord c = cells.spec.cellOf(x.x, x.y, x.z);
+        if (!near[denseCellIndex(c.x, c.y, c.z, cells.spec.dims[0], cells.spec.dims[2])]) {
             return;
         }
-        const int xLo = cx > 0 ? cx - 1 : 0, xHi = cx + 1 < nx ? cx + 1 : nx - 1;
-        for (int y = cy > 0 ? cy - 1 : 0; y <= cy + 1 && y < ny; ++y) {
-            for (int z = cz > 0 ? cz - 1 : 0; z <= cz + 1 && z < nz; ++z) {
-                const Index end = cellStart[cellOf(xHi, y, z) + 1];
-                for (Index b = cellStart[cellOf(xLo, y, z)]; b < end; ++b) {
-                    f(b);
-                }
+        const Real h = cells.spec.cellSize;
+        cells.forEachRun(x, 1, h * h, [&](Index first, Index end) {
+            for (Index b = first; b < end; ++b) {
+                f(b);
             }
-        }
-    }
-
-    WEIR_HD Index cellOf(int x, int y, int z) const { return (Index(y) * nz + z) * nx + x; }
-    WEIR_HD static int clampCell(Real v, int n) {
-        const int c = int(std::floor(v));
-        return c < 0 ? 0 : (c >= n ? n - 1 : c);
+        });
     }
 };
 
@@ -103,6 +90,18 @@ struct BoundaryParticles {
     Real cellSize = 0;
     int dims[3] = {0, 0, 0};
     std::size_t size() const { return pos.size(); }
+
+    // The cells of the static grid, as the view walks them.
+    GridSpec cellSpec() const {
+        GridSpec spec;
+        spec.origin = origin;
+        spec.cellSize = cellSize;
+        spec.inverseCellSize = cellSize > Real(0) ? Real(1) / cellSize : Real(0);
+        for (int a = 0; a < 3; ++a) {
+            spec.dims[a] = dims[a] > 0 ? dims[a] : 1;
+        }
+        return spec;
+    }
 };
 
 }  // namespace weir

@@ -1,5 +1,5 @@
 // CUDA-OpenGL interop: the renderer's two vertex buffers registered with CUDA, mapped each frame,
-// filled by one kernel from the solver's packed device arrays (position, velocity with density
+// filled by one kernel from the simulation's packed device arrays (position, velocity with density
 // in w), unmapped for drawing.
 // cuda_gl_interop.h brings its own GL header; this file uses no GL call, only buffer names.
 #include <cuda_gl_interop.h>
@@ -7,7 +7,7 @@
 #include "core/exec_cuda.cuh"
 #include "physics/eos.h"
 #include "render/particle_interop.h"
-#include "solver/sph_solver.h"
+#include "solver/simulation.h"
 
 namespace weir {
 
@@ -36,11 +36,12 @@ __global__ void fillParticleBuffers(const Real4* pos, const Real4* vel, Index n,
 
 class CudaParticleInterop : public ParticleInterop {
    public:
-    explicit CudaParticleInterop(SphSolver<CudaExec>& solver) : solver_(solver) {}
+    explicit CudaParticleInterop(Simulation& simulation) : simulation_(simulation) {}
     ~CudaParticleInterop() override { unregister(); }
 
     void update(Renderer& renderer, ColourField field, double radius) override {
-        const Index n = solver_.particleCount();
+        const ParticleArrays arrays = simulation_.particleArrays();
+        const Index n = arrays.count;
         const auto [positionBuffer, valueBuffer] = renderer.reserveParticleBuffers(std::size_t(n));
         if (positionBuffer != positionBuffer_ || valueBuffer != valueBuffer_ || n != registered_) {
             unregister();
@@ -60,11 +61,10 @@ class CudaParticleInterop : public ParticleInterop {
                                                              &bytes, resources_[0]));
         WEIR_CUDA_CHECK(cudaGraphicsResourceGetMappedPointer(reinterpret_cast<void**>(&values),
                                                              &bytes, resources_[1]));
-        const ParticleView view = solver_.view();
         if (n > 0) {
             const int block = 256;
             fillParticleBuffers<<<unsigned((n + block - 1) / block), block>>>(
-                view.pos, view.vel, n, solver_.params(), int(field), positions, values);
+                arrays.pos, arrays.vel, n, simulation_.params(), int(field), positions, values);
             WEIR_CUDA_CHECK(cudaGetLastError());
         }
         WEIR_CUDA_CHECK(cudaGraphicsUnmapResources(2, resources_, 0));
@@ -84,7 +84,7 @@ class CudaParticleInterop : public ParticleInterop {
         registered_ = -1;
     }
 
-    SphSolver<CudaExec>& solver_;
+    Simulation& simulation_;
     cudaGraphicsResource* resources_[2] = {nullptr, nullptr};
     unsigned positionBuffer_ = 0, valueBuffer_ = 0;
     Index registered_ = -1;
@@ -99,8 +99,7 @@ std::unique_ptr<ParticleInterop> makeParticleInterop(Simulation& simulation, std
         }
         return nullptr;
     };
-    auto* solver = dynamic_cast<SphSolver<CudaExec>*>(&simulation);
-    if (solver == nullptr) {
+    if (!simulation.particleArrays().onDevice) {
         return say("the simulation runs on the CPU");
     }
     // The CUDA devices behind the current OpenGL context: none for Mesa's software renderer.
@@ -114,7 +113,7 @@ std::unique_ptr<ParticleInterop> makeParticleInterop(Simulation& simulation, std
     WEIR_CUDA_CHECK(cudaGetDevice(&current));
     for (unsigned int k = 0; k < count; ++k) {
         if (devices[k] == current) {
-            return std::make_unique<CudaParticleInterop>(*solver);
+            return std::make_unique<CudaParticleInterop>(simulation);
         }
     }
     return say("the window's OpenGL runs on another GPU than the simulation");

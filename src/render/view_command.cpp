@@ -13,6 +13,7 @@
 
 #include "core/backend.h"
 #include "render/gl.h"  // before GLFW, which then includes no GL header of its own
+#include "solver/simulation.h"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 

@@ -8,6 +8,7 @@
 #include "grid/cell_id.h"
 #include "physics/kernels.h"
 #include "scene/boundary.h"
+#include "scene/lattice_seeder.h"
 #include "scene/seeding.h"
 
 namespace weir {
@@ -114,19 +115,19 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     }
     const double d = report.spacing;
     SimulationSetup setup;
-    setup.seeds = sceneSeeds(scene, d);
-    if (setup.seeds.count == 0) {
+    SceneSeeds seeds = sceneSeeds(scene, d);
+    if (seeds.count == 0) {
         throw SceneError(where + ": the fluid holds no particle at spacing " + fmt(d) +
                          " m; make the blocks or spheres larger or the spacing smaller");
     }
-    if (setup.seeds.count > std::int64_t(2147483647)) {
-        throw SceneError(where + ": " + std::to_string(setup.seeds.count) +
+    if (seeds.count > std::int64_t(2147483647)) {
+        throw SceneError(where + ": " + std::to_string(seeds.count) +
                          " particles exceed the limit of 2147483647");
     }
-    if (!options.seedOnDevice || !setup.seeds.seedableOnDevice()) {
-        forEachSeed(setup.seeds,
-                    [&](const Vec3d& p, const Vec3d& v) { setup.particles.push(p, v); });
-        setup.seeds = SceneSeeds{};
+    if (options.seedOnDevice && seeds.seedableOnDevice()) {
+        setup.seeder = std::make_shared<LatticeSeeder>(std::move(seeds));
+    } else {
+        forEachSeed(seeds, [&](const Vec3d& p, const Vec3d& v) { setup.particles.push(p, v); });
     }
 
     // Smoothing radius and mass (§5.2: mass from density, volume and count). The lattice sum

@@ -8,14 +8,14 @@
 #include <vector>
 
 #include "scene/scene.h"
-#include "solver/simulation.h"
+#include "solver/simulation_setup.h"
 
 namespace weir {
 
 struct SetupOptions {
     std::optional<std::int64_t> particleCount;  // overrides the scene's resolution
     // Leave the particles to be seeded by the simulation on its own backend (on the GPU for a
-    // CUDA run): setup.seeds instead of setup.particles, for runs too large to seed on the host.
+    // CUDA run): setup.seeder instead of setup.particles, for runs too large to seed on the host.
     bool seedOnDevice = false;
 };
 

@@ -13,6 +13,7 @@
 
 #include "core/check.h"
 #include "grid/cell_id.h"
+#include "solver/simulation.h"
 
 namespace weir {
 namespace {

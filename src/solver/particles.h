@@ -1,4 +1,5 @@
-// Host-side particle data, structure of arrays, as written to frames.
+// Particle data on the host: structure of arrays as written to frames, and the packed batches
+// that travel between ranks.
 #pragma once
 
 #include <cstddef>
@@ -30,6 +31,37 @@ struct HostParticles {
         vz.push_back(Real(vel.z));
         rho.push_back(0);
         p.push_back(0);
+    }
+};
+
+// Particles in a backend's memory (device pointers on CUDA), on their way between ranks.
+struct ParticleSpans {
+    Real4* pos = nullptr;
+    Real4* vel = nullptr;
+    Index* id = nullptr;
+};
+
+// Particles on their way between ranks, on the host: positions (w = 1 marks a ghost copy),
+// velocities with density in w, and global ids (the index in the single-rank run's order).
+struct ParticleBatch {
+    std::vector<Real4> pos, vel;
+    std::vector<Index> id;
+
+    std::size_t size() const { return id.size(); }
+    void clear() {
+        pos.clear();
+        vel.clear();
+        id.clear();
+    }
+    void resize(std::size_t n) {
+        pos.resize(n);
+        vel.resize(n);
+        id.resize(n);
+    }
+    void push(const ParticleBatch& from, std::size_t k) {
+        pos.push_back(from.pos[k]);
+        vel.push_back(from.vel[k]);
+        id.push_back(from.id[k]);
     }
 };
 

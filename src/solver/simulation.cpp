@@ -7,50 +7,14 @@
 #include "core/check.h"
 #include "core/exec_cpu.h"
 #include "grid/dense_grid.h"
+#include "solver/methods.h"
 
 namespace weir {
 
-std::unique_ptr<RankPart> makeCpuSimulation(NeighbourMode mode, SimulationSetup setup);
+std::unique_ptr<Simulation> makeCpuSimulation(NeighbourMode mode, SimulationSetup setup);
 #if defined(WEIR_HAS_CUDA)
-std::unique_ptr<RankPart> makeCudaSimulation(NeighbourMode mode, SimulationSetup setup);
+std::unique_ptr<Simulation> makeCudaSimulation(NeighbourMode mode, SimulationSetup setup);
 #endif
-
-NeighbourMode parseNeighbourMode(const std::string& name) {
-    if (name == "grid") {
-        return NeighbourMode::Grid;
-    }
-    if (name == "dense") {
-        return NeighbourMode::Dense;
-    }
-    if (name == "brute") {
-        return NeighbourMode::Brute;
-    }
-    if (name == "auto") {
-        return NeighbourMode::Auto;
-    }
-    throw std::invalid_argument("unknown neighbour search '" + name +
-                                "': allowed are auto, grid, dense, brute");
-}
-
-const char* neighbourModeName(NeighbourMode mode) {
-    switch (mode) {
-        case NeighbourMode::Grid:
-            return "grid";
-        case NeighbourMode::Dense:
-            return "dense";
-        case NeighbourMode::Brute:
-            return "brute";
-        default:
-            return "auto";
-    }
-}
-
-NeighbourMode resolveNeighbourMode(NeighbourMode mode, const GridSpec& grid, std::int64_t n) {
-    if (mode != NeighbourMode::Auto) {
-        return mode;
-    }
-    return denseGridSuits(grid, n) ? NeighbourMode::Dense : NeighbourMode::Grid;
-}
 
 std::size_t bytesPerParticleEstimate(NeighbourMode mode, std::size_t cellIdBytes) {
     // Position and velocity (padded vectors, density in the velocity's fourth), id, pressure
@@ -92,9 +56,14 @@ void checkMemoryFits(Index count, NeighbourMode mode, std::size_t freeBytes,
     }
 }
 
-std::unique_ptr<RankPart> makeSimulation(Backend backend, NeighbourMode mode,
-                                         SimulationSetup setup) {
+std::unique_ptr<Simulation> makeSimulation(Backend backend, NeighbourMode mode,
+                                           SimulationSetup setup) {
     mode = resolveNeighbourMode(mode, setup.grid, setup.particleCount());
+    try {
+        setup.method = checkPressureSolver(setup.method);
+    } catch (const std::invalid_argument& e) {
+        throw SimulationError(e.what());
+    }
     if (backend == Backend::Cpu) {
         checkMemoryFits(Index(setup.countHere()), mode, CpuExec().freeMemoryBytes(), "host memory",
                         cellIdBytesFor(setup.grid));

@@ -1,13 +1,13 @@
-// The SPH solver instantiated on the CPU backend (OpenMP).
+// The simulation instantiated on the CPU backend (OpenMP).
 #include "core/exec_cpu.h"
-#include "solver/sph_solver.h"
+#include "solver/sph_simulation.h"
 
 namespace weir {
 
-template class SphSolver<CpuExec>;
+template class SphSimulation<CpuExec>;
 
-std::unique_ptr<RankPart> makeCpuSimulation(NeighbourMode mode, SimulationSetup setup) {
-    return std::make_unique<SphSolver<CpuExec>>(mode, std::move(setup));
+std::unique_ptr<Simulation> makeCpuSimulation(NeighbourMode mode, SimulationSetup setup) {
+    return std::make_unique<SphSimulation<CpuExec>>(mode, std::move(setup));
 }
 
 }  // namespace weir

@@ -238,20 +238,5 @@ TEST(Solver, FrameZeroHasDensity) {
 
 TEST(Solver, SeedsOnItsBackendAsTheHostDoes) { expectBackendSeedingMatchesTheHost(Backend::Cpu); }
 
-TEST(Seeding, CountsAgreeWithTheSeedsVisited) {
-    // The closed-form count of a lone block and the parallel count of the rest against a visit
-    // of every kept point, at a few spacings.
-    for (const Scene& scene : {seedingScene(), builtinScene("dam_break"),
-                               builtinScene("double_dam_break"), builtinScene("drop_into_pool")}) {
-        for (double d : {0.011, 0.02, 0.037}) {
-            SceneSeeds seeds = sceneSeeds(scene, d);
-            std::int64_t visited = 0;
-            forEachSeed(seeds, [&](const Vec3d&, const Vec3d&) { ++visited; });
-            EXPECT_EQ(seeds.count, visited) << scene.name << " at d = " << d;
-            EXPECT_GT(visited, 0);
-        }
-    }
-}
-
 }  // namespace
 }  // namespace weir

@@ -6,70 +6,25 @@
 
 #include "core/config.h"
 #include "core/vec3.h"
-#include "grid/dense_grid.h"
+#include "grid/cell_walk.h"
 
 namespace weir {
 
-// floor() as an int without a library call.
-WEIR_HD inline int floorToInt(Real v) {
-    const int t = int(v);
-    return t - (v < Real(t) ? 1 : 0);
-}
-
 // Particles sorted by bin (grid/dense_grid.h), looked up around any point in space.
 struct ParticleBinsView {
-    const Index* cellBound;  // bins + 1 entries: particles of bin b are [cellBound[b], ...[b + 1])
-    const Real4* pos;        // positions in bin order
-    Vec3 origin;
-    Real binSize;
-    int nx, ny, nz;
-    int reach;  // bins per search radius, rounded up
+    CellTableView bins;  // bins + 1 bounds: particles of bin b are [cellBound[b], cellBound[b + 1])
+    const Real4* pos;    // positions in bin order
+    int reach;           // bins per search radius, rounded up
 
     // Calls f(j) for each particle j that can lie within sqrt(radius2) of p: rows of bins whose
     // slab is out of reach are skipped and each row is cut to the chord of the sphere.
     template <class F>
     WEIR_HD void forEachNear(const Vec3& p, Real radius2, F&& f) const {
-        const Real invBin = Real(1) / binSize;
-        const Vec3 local = (p - origin) * invBin;
-        const int cy = floorToInt(local.y);
-        const int cz = floorToInt(local.z);
-        const int yLo = cy - reach < 0 ? 0 : cy - reach,
-                  yHi = cy + reach < ny ? cy + reach : ny - 1;
-        const int zLo = cz - reach < 0 ? 0 : cz - reach,
-                  zHi = cz + reach < nz ? cz + reach : nz - 1;
-        for (int y = yLo; y <= yHi; ++y) {
-            const Real dy = slabDistance(p.y, origin.y + Real(y) * binSize);
-            const Real remainderY = radius2 - dy * dy;
-            if (remainderY <= Real(0)) {
-                continue;
+        bins.forEachRun<true>(p, reach, radius2, [&](Index first, Index end) {
+            for (Index j = first; j < end; ++j) {
+                f(j);
             }
-            for (int z = zLo; z <= zHi; ++z) {
-                const Real dz = slabDistance(p.z, origin.z + Real(z) * binSize);
-                const Real remainder = remainderY - dz * dz;
-                if (remainder <= Real(0)) {
-                    continue;
-                }
-                const Real halfChord = std::sqrt(remainder);
-                int xLo = floorToInt((p.x - halfChord - origin.x) * invBin);
-                int xHi = floorToInt((p.x + halfChord - origin.x) * invBin);
-                xLo = xLo < 0 ? 0 : xLo;
-                xHi = xHi > nx - 1 ? nx - 1 : xHi;
-                if (xLo > xHi) {
-                    continue;
-                }
-                const CellKey row = denseCellIndex(0, y, z, nx, nz);
-                const Index end = cellBound[row + CellKey(xHi) + 1];
-                for (Index j = cellBound[row + CellKey(xLo)]; j < end; ++j) {
-                    f(j);
-                }
-            }
-        }
-    }
-
-    // Distance from coordinate v to the slab [lo, lo + binSize] (0 inside).
-    WEIR_HD Real slabDistance(Real v, Real lo) const {
-        const Real hi = lo + binSize;
-        return v < lo ? lo - v : (v > hi ? v - hi : Real(0));
+        });
     }
 };
 

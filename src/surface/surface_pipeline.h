@@ -121,11 +121,8 @@ TriangleMesh extractSurface(Exec& exec, const HostParticles& particles, const Su
         exec.forEach(n, [=] WEIR_HD(Index k) { sorted[k] = unsorted[permutation[k]]; });
     }
     ZhuBridsonField field;
-    field.particles = {
-        bins.cellBound().data(), sortedPos.data(),
-        binSpec.origin,          binSpec.cellSize,
-        binSpec.dims[0],         binSpec.dims[1],
-        binSpec.dims[2],         int(std::ceil(plan.kernelRadius / plan.binSize - 1e-9))};
+    field.particles = {bins.cells(), sortedPos.data(),
+                       int(std::ceil(plan.kernelRadius / plan.binSize - 1e-9))};
     field.kernelRadius2 = Real(plan.kernelRadius * plan.kernelRadius);
     field.inverseKernelRadius2 = Real(1 / (plan.kernelRadius * plan.kernelRadius));
     field.particleRadius = Real(plan.particleRadius);

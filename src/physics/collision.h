@@ -1,0 +1,96 @@
+// The paper's simple collision response: particles put back on the container walls and off
+// obstacle boxes and spheres, losing their velocity into the surface (walls.model "simple", and the
+// safety net under boundary particles).
+#pragma once
+
+#include <cmath>
+
+#include "core/config.h"
+#include "core/vec3.h"
+#include "physics/sph_params.h"
+
+namespace weir {
+
+struct ObstacleBox {
+    Vec3 min, max;
+};
+struct ObstacleSphere {
+    Vec3 center;
+    Real radius;
+};
+struct ObstacleView {
+    const ObstacleBox* boxes;
+    int boxCount;
+    const ObstacleSphere* spheres;
+    int sphereCount;
+};
+
+// Removes the part of v along unit normal n that points into the wall, keeping `restitution` of
+// it (bounced back), and `1 - friction` of the tangential part.
+WEIR_HD inline void reflectVelocity(Vec3& v, const Vec3& n, const SphParams& params) {
+    Real vn = dot(v, n);
+    if (vn < 0) {
+        Vec3 tangential = v - n * vn;
+        v = tangential * (Real(1) - params.friction) - n * (vn * params.restitution);
+    }
+}
+
+// The paper's simple collision response: particles are put back on the container walls and off
+// obstacle boxes and spheres, and lose their velocity into the surface.
+WEIR_HD inline void collide(Vec3& x, Vec3& v, const SphParams& params,
+                            const ObstacleView& obstacles) {
+    for (int a = 0; a < 3; ++a) {
+        Vec3 n;
+        if (x[a] < params.boxMin[a]) {
+            x[a] = params.boxMin[a];
+            n[a] = 1;
+            reflectVelocity(v, n, params);
+        } else if (x[a] > params.boxMax[a]) {
+            x[a] = params.boxMax[a];
+            n[a] = -1;
+            reflectVelocity(v, n, params);
+        }
+    }
+    for (int b = 0; b < obstacles.boxCount; ++b) {
+        const ObstacleBox box = obstacles.boxes[b];
+        bool inside = x.x > box.min.x && x.x < box.max.x && x.y > box.min.y && x.y < box.max.y &&
+                      x.z > box.min.z && x.z < box.max.z;
+        if (!inside) {
+            continue;
+        }
+        // Leave through the nearest face.
+        int axis = 0;
+        Real best = Real(1e30), side = 1;
+        for (int a = 0; a < 3; ++a) {
+            Real toMin = x[a] - box.min[a], toMax = box.max[a] - x[a];
+            if (toMin < best) {
+                best = toMin;
+                axis = a;
+                side = -1;
+            }
+            if (toMax < best) {
+                best = toMax;
+                axis = a;
+                side = 1;
+            }
+        }
+        x[axis] = side < 0 ? box.min[axis] : box.max[axis];
+        Vec3 n;
+        n[axis] = side;
+        reflectVelocity(v, n, params);
+    }
+    for (int s = 0; s < obstacles.sphereCount; ++s) {
+        const ObstacleSphere sphere = obstacles.spheres[s];
+        Vec3 d = x - sphere.center;
+        Real r2 = lengthSquared(d);
+        if (r2 >= sphere.radius * sphere.radius) {
+            continue;
+        }
+        Real r = std::sqrt(r2);
+        Vec3 n = r > Real(0) ? d / r : Vec3(0, 1, 0);
+        x = sphere.center + n * sphere.radius;
+        reflectVelocity(v, n, params);
+    }
+}
+
+}  // namespace weir

@@ -1,0 +1,54 @@
+// What a pressure solver (a method: WCSPH, DFSPH, ...) is to the rest of weir: the stages of one
+// step over the shared parts of a simulation. Each method lives in a folder of its own under
+// solver/ with its stages and tests, and is registered by one line in solver/methods.h.
+#pragma once
+
+#include <cstddef>
+
+#include "physics/boundary.h"
+#include "physics/collision.h"
+#include "physics/faults.h"
+#include "physics/particle_view.h"
+#include "physics/sph_params.h"
+#include "physics/time_step.h"
+#include "solver/neighbour_search.h"
+#include "solver/particle_store.h"
+
+namespace weir {
+
+// The stages a stage benchmark can run one at a time (bench/, `weir bench`).
+enum class Stage { Grid, Density, Force, Integrate };
+
+// The parts of a simulation a method's step works on. The pointers are device memory on CUDA.
+template <class Exec>
+struct StepContext {
+    Exec& exec;
+    ParticleStore<Exec>& store;
+    NeighbourSearch<Exec>& search;
+    const SphParams& params;
+    StepClock* clock;        // this step's dt and time (physics/time_step.h)
+    FaultRecord* fault;      // the first fault of the run (physics/faults.h)
+    BoundaryView boundary;   // static boundary particles (empty: none)
+    ObstacleView obstacles;  // obstacles of the simple collision response
+};
+
+template <class Exec>
+class PressureSolver {
+   public:
+    virtual ~PressureSolver() = default;
+
+    // One step: the grid build, the method's stages and the move of every particle, bracketed
+    // by the one-thread stages that choose dt and move the clock on (physics/time_step.h).
+    virtual void step(StepContext<Exec>& context) = 0;
+    // Density (and what the method derives from it) of the current state, without stepping
+    // (frame 0).
+    virtual void computeDensity(StepContext<Exec>& context) = 0;
+    // One stage alone, for stage benchmarks; asynchronous like step().
+    virtual void runStage(StepContext<Exec>& context, Stage stage) = 0;
+    // Whether step() may be replayed as a CUDA graph (no host round trip inside a step).
+    virtual bool capturable() const { return true; }
+    // Bytes of the method's own per-particle arrays.
+    virtual std::size_t bytesHeld() const = 0;
+};
+
+}  // namespace weir

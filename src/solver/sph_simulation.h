@@ -1,0 +1,180 @@
+// A simulation on one backend (CpuExec or CudaExec), put together from its parts: the particle
+// store, the neighbour search, the step driver, the static walls and obstacles, and a pressure
+// solver (solver/methods.h). Instantiated for the CPU in solver_cpu.cpp and for CUDA in
+// solver_cuda.cu; cluster/ wraps one per rank of a distributed run.
+#pragma once
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "core/check.h"
+#include "solver/methods.h"
+#include "solver/neighbour_search.h"
+#include "solver/particle_store.h"
+#include "solver/pressure_solver.h"
+#include "solver/simulation.h"
+#include "solver/step_driver.h"
+
+namespace weir {
+
+template <class Exec>
+class SphSimulation final : public Simulation {
+   public:
+    template <class T>
+    using Buffer = typename Exec::template Buffer<T>;
+
+    // mode: resolved already (not Auto).
+    SphSimulation(NeighbourMode mode, SimulationSetup setup)
+        : params_(setup.params),
+          methodName_(checkPressureSolver(setup.method)),
+          search_(mode, setup.grid, setup.particleCount(), setup.params.kernel.h),
+          method_(makePressureSolver<Exec>(methodName_, setup.params)) {
+        if (setup.particles.size() == 0 && setup.seeder) {
+            setup.seeder->seed(exec_, store_);  // on this backend, in the host's order
+        } else {
+            store_.upload(exec_, setup.particles, setup.particleIds);
+        }
+        store_.fitScratch(search_.reorders());
+        uploadWalls(setup);
+        FaultRecord none{0, 0, 0, 0.0f, 0.0f};
+        exec_.upload(fault_, &none, 1);
+        // The first step's dt sees the initial speeds and gravity (the lattice starts in balance).
+        double maxSpeed2 = 0;
+        const HostParticles& host = setup.particles;
+        for (std::size_t i = 0; i < host.size(); ++i) {
+            maxSpeed2 = std::max(maxSpeed2, double(host.vx[i]) * host.vx[i] +
+                                                double(host.vy[i]) * host.vy[i] +
+                                                double(host.vz[i]) * host.vz[i]);
+        }
+        if (setup.seeder) {
+            maxSpeed2 = std::max(maxSpeed2, setup.seeder->maxSpeed() * setup.seeder->maxSpeed());
+        }
+        driver_.start(exec_, maxSpeed2, double(lengthSquared(params_.gravity)),
+                      double(params_.timeStep));
+    }
+
+    // ---- Simulation ----
+
+    void advanceTo(double target) override {
+        driver_.advanceTo(
+            exec_, target, [&] { stepNow(); }, capturable(),
+            [&] { return exec_.readOne(fault_, 0).code != 0; });
+    }
+    void advance(int steps) override {
+        driver_.advance(
+            exec_, steps, [&] { stepNow(); }, capturable());
+    }
+    void computeDensity() override {
+        StepContext<Exec> s = context();
+        method_->computeDensity(s);
+    }
+    void runStage(Stage stage) override {
+        StepContext<Exec> s = context();
+        method_->runStage(s, stage);
+    }
+    void download(HostParticles& out) override { store_.download(exec_, out, params_); }
+    FaultRecord fault() override { return exec_.readOne(fault_, 0); }
+    void synchronize() override { exec_.synchronize(); }
+
+    void setTiming(bool on) override { exec_.timing = on; }
+    const StageTimes& stageTimes() const override { return times_; }
+    void clearStageTimes() override { times_.clear(); }
+
+    Backend backend() const override { return Exec::isDevice ? Backend::Cuda : Backend::Cpu; }
+    NeighbourMode neighbourMode() const override { return search_.mode(); }
+    std::string deviceName() const override { return exec_.deviceName(); }
+    std::size_t bytesHeld() const override {
+        return store_.bytesHeld() + search_.bytesHeld() + method_->bytesHeld() +
+               boundaryStart_.size() * sizeof(Index) + boundaryPos_.size() * sizeof(Real4) +
+               boundaryNear_.size();
+    }
+    Index occupiedCells() const override { return search_.occupiedCells(); }
+    const SphParams& params() const override { return params_; }
+    std::string method() const override { return methodName_; }
+    Index particleCount() const override { return store_.count(); }
+    long long stepCount() const override { return driver_.read(exec_).step; }
+    double time() const override { return driver_.read(exec_).time; }
+    ParticleArrays particleArrays() override {
+        return {store_.pos(), store_.vel(), store_.id(), store_.count(), Exec::isDevice};
+    }
+
+    // ---- The parts, for cluster/'s rank of a distributed run ----
+
+    Exec& exec() { return exec_; }
+    ParticleStore<Exec>& store() { return store_; }
+    NeighbourSearch<Exec>& search() { return search_; }
+    StepClock clock() { return driver_.read(exec_); }
+    void setClock(const StepClock& clock) { driver_.write(exec_, clock); }
+    // The clock and the first fault, read back in one wait.
+    StepClock clockAndFault(FaultRecord& fault) {
+        StepClock clock;
+        exec_.downloadFromAsync(driver_.buffer(), 0, &clock, 1);
+        exec_.downloadFromAsync(fault_, 0, &fault, 1);
+        exec_.synchronize();
+        return clock;
+    }
+    // One step with the clock as it is (the caller set the shared dt inputs and target).
+    void stepOnce() {
+        driver_.run(
+            exec_, 1, [&] { stepNow(); }, false);
+    }
+
+   private:
+    bool capturable() const { return search_.capturable() && method_->capturable(); }
+
+    StepContext<Exec> context() {
+        const ObstacleView obstacles{boxes_.data(), int(boxes_.size()), spheres_.data(),
+                                     int(spheres_.size())};
+        return {exec_,           store_,        search_,        params_,
+                driver_.clock(), fault_.data(), boundaryView(), obstacles};
+    }
+
+    void stepNow() {
+        StepContext<Exec> s = context();
+        method_->step(s);
+        if (exec_.timing) {
+            exec_.collectTimes(times_);
+        }
+    }
+
+    BoundaryView boundaryView() {
+        BoundaryView walls = boundary_;
+        walls.pos = boundaryPos_.data();
+        walls.cells.cellBound = boundaryStart_.data();
+        walls.near = boundaryNear_.data();
+        return walls;
+    }
+
+    void uploadWalls(const SimulationSetup& setup) {
+        const BoundaryParticles& walls = setup.boundary;
+        if (walls.size() > 0) {
+            exec_.upload(boundaryPos_, walls.pos.data(), walls.pos.size());
+            exec_.upload(boundaryStart_, walls.cellStart.data(), walls.cellStart.size());
+            exec_.upload(boundaryNear_, walls.near.data(), walls.near.size());
+            boundary_.cells.spec = walls.cellSpec();
+            boundary_.count = Index(walls.size());
+        }
+        exec_.upload(boxes_, setup.obstacleBoxes.data(), setup.obstacleBoxes.size());
+        exec_.upload(spheres_, setup.obstacleSpheres.data(), setup.obstacleSpheres.size());
+    }
+
+    mutable Exec exec_;  // mutable: reading the device clock back is not a change
+    SphParams params_;
+    std::string methodName_;
+    ParticleStore<Exec> store_;
+    NeighbourSearch<Exec> search_;
+    StepDriver<Exec> driver_;
+    std::unique_ptr<PressureSolver<Exec>> method_;
+    Buffer<FaultRecord> fault_;
+    Buffer<ObstacleBox> boxes_;
+    Buffer<ObstacleSphere> spheres_;
+    BoundaryView boundary_;  // geometry of the static wall grid; pointers filled by boundaryView()
+    Buffer<Real4> boundaryPos_;
+    Buffer<Index> boundaryStart_;
+    Buffer<unsigned char> boundaryNear_;
+    StageTimes times_;
+};
+
+}  // namespace weir

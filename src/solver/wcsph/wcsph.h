@@ -1,0 +1,211 @@
+// Weakly compressible SPH, the paper's method (§5-6; Müller et al. 2003): density, pressure by an
+// equation of state, pressure and viscous forces, displacement; separate stages launched in
+// sequence, one thread per particle.
+#pragma once
+
+#include <cstdint>
+#include <cstdlib>
+#include <type_traits>
+
+#include "core/team.h"
+#include "grid/dense_grid.h"
+#include "solver/pressure_solver.h"
+#include "solver/wcsph/wcsph_stages.h"
+
+namespace weir {
+
+template <class Exec>
+class Wcsph final : public PressureSolver<Exec> {
+   public:
+    template <class T>
+    using Buffer = typename Exec::template Buffer<T>;
+    using Context = StepContext<Exec>;
+
+    static constexpr const char* kName = "wcsph";
+    static constexpr const char* kDescription =
+        "weakly compressible SPH (the paper's: an equation of state, a speed of sound ten times "
+        "the flow's)";
+
+    explicit Wcsph(const SphParams&) {}
+
+    // Paper §6: grid, density and pressure, force, displacement. The dense table's path runs the
+    // force and displacement as one pass (no acceleration array); the paper's grid and brute
+    // force keep the paper's separate stages, so that Tables 1-3 reproduce stage for stage.
+    void step(Context& s) override {
+        StepClock* clock = s.clock;
+        const SphParams params = s.params;
+        s.search.update(s.exec, s.store, [=] WEIR_HD() { beginStep(*clock, params); });
+        fit(s);
+        s.search.visit(s.store.pos(), s.store.count(), [&](const auto& nb) {
+            computeDensityPressure(s, nb, true);
+            if constexpr (fusesForceAndDisplacement<decltype(nb)>()) {
+                accelerateAndIntegrate(s, nb);
+            } else {
+                computeAcceleration(s, nb);
+                integrate(s);
+            }
+        });
+        s.exec.forEach(1, [=] WEIR_HD(Index) { endStep(*clock); });
+    }
+
+    void computeDensity(Context& s) override {
+        s.search.update(s.exec, s.store, [] WEIR_HD() {});
+        fit(s);
+        s.search.visit(s.store.pos(), s.store.count(),
+                       [&](const auto& nb) { computeDensityPressure(s, nb, false); });
+    }
+
+    void runStage(Context& s, Stage stage) override {
+        fit(s);
+        switch (stage) {
+            case Stage::Grid:
+                if (s.search.reorders()) {
+                    s.search.update(s.exec, s.store, [] WEIR_HD() {});
+                }
+                break;
+            case Stage::Density:
+                s.search.visit(s.store.pos(), s.store.count(),
+                               [&](const auto& nb) { computeDensityPressure(s, nb, false); });
+                break;
+            case Stage::Force:
+                s.search.visit(s.store.pos(), s.store.count(), [&](const auto& nb) {
+                    if constexpr (fusesForceAndDisplacement<decltype(nb)>()) {
+                        accelerateAndIntegrate(s, nb);
+                    } else {
+                        computeAcceleration(s, nb);
+                    }
+                });
+                break;
+            case Stage::Integrate:
+                if (s.search.mode() != NeighbourMode::Dense) {
+                    integrate(s);
+                }
+                break;
+        }
+    }
+
+    std::size_t bytesHeld() const override {
+        return pressureTerm_.size() * sizeof(Real) + acc_.size() * sizeof(Real4);
+    }
+
+    // ---- The stages (public only because CUDA lambdas need a public enclosing function) ----
+
+    // Density and pressure term of every particle; skipped in a no-op step when `inStep`.
+    template <class Neighbours>
+    void computeDensityPressure(Context& s, const Neighbours& nb, bool inStep) {
+        s.exec.stageBegin("density");
+        const ParticleView pv = view(s);
+        const SphParams params = s.params;
+        const StepClock* clock = inStep ? s.clock : nullptr;
+        s.exec.forEach(pv.count, [=] WEIR_HD(Index i) {
+            if (clock == nullptr || clock->dt != Real(0)) {
+                densityPressureAt(i, pv, nb, params);
+            }
+        });
+        s.exec.stageEnd("density");
+    }
+
+    template <class Neighbours>
+    void computeAcceleration(Context& s, const Neighbours& nb) {
+        s.exec.stageBegin("force");
+        const ParticleView pv = view(s);
+        const SphParams params = s.params;
+        const StepClock* clock = s.clock;
+        s.exec.forEach(pv.count, [=] WEIR_HD(Index i) {
+            if (clock->dt != Real(0) && !isGhost(pv.pos[i])) {
+                accelerationAt(i, pv, nb, params);
+            }
+        });
+        s.exec.stageEnd("force");
+    }
+
+    // The paper's displacement stage.
+    void integrate(Context& s) {
+        s.exec.stageBegin("integrate");
+        const ParticleView pv = view(s);
+        const SphParams params = s.params;
+        const ObstacleView obstacles = s.obstacles;
+        FaultRecord* fault = s.fault;
+        StepClock* clock = s.clock;
+        // The step number and dt live on the device, so a replayed graph uses the right ones.
+        s.exec.forEach(pv.count, [=] WEIR_HD(Index i) {
+            if (clock->dt != Real(0)) {
+                integrateAt(i, pv, params, obstacles, fault, clock);
+            }
+        });
+        s.exec.stageEnd("integrate");
+    }
+
+    // Force and displacement in one pass (dense path): timed as "force".
+    template <class Neighbours>
+    void accelerateAndIntegrate(Context& s, const Neighbours& nb) {
+        s.exec.stageBegin("force");
+        if constexpr (Exec::isDevice) {
+            if (teamSize(s) == 2) {
+                accelerateAndIntegratePass<2>(s, nb);
+            } else {
+                accelerateAndIntegratePass<1>(s, nb);
+            }
+        } else {
+            accelerateAndIntegratePass<1>(s, nb);
+        }
+        s.store.commitMotion();
+        s.exec.stageEnd("force");
+    }
+
+    template <int TeamSize, class Neighbours>
+    void accelerateAndIntegratePass(Context& s, const Neighbours& nb) {
+        const ParticleView pv = view(s);
+        const SphParams params = s.params;
+        const ObstacleView obstacles = s.obstacles;
+        FaultRecord* fault = s.fault;
+        StepClock* clock = s.clock;
+        Real4 *newPos = s.store.nextPos(), *newVel = s.store.nextVel();
+        s.exec.template forEachTeam<TeamSize>(pv.count, [=] WEIR_HD(Index i, Team<TeamSize> team) {
+            accelerateAndIntegrateAt(i, pv, nb, params, obstacles, fault, clock, newPos, newVel,
+                                     team);
+        });
+    }
+
+   private:
+    // The dense table's path fuses force and displacement; the paper's grid and brute force keep
+    // the paper's stages.
+    template <class Neighbours>
+    static constexpr bool fusesForceAndDisplacement() {
+        return std::is_same_v<std::decay_t<Neighbours>, DenseGridNeighbours>;
+    }
+
+    // Sizes the method's arrays to the particle count (no allocation unless it grew).
+    void fit(Context& s) {
+        pressureTerm_.resize(std::size_t(s.store.count()));
+        if (s.search.mode() != NeighbourMode::Dense) {
+            acc_.resize(std::size_t(s.store.count()));  // the dense path fuses force and motion
+        }
+    }
+
+    ParticleView view(Context& s) {
+        return {s.store.pos(),        s.store.vel(),   acc_.data(),
+                pressureTerm_.data(), s.store.count(), s.boundary};
+    }
+
+    // Lanes per particle in the dense path's force pass on the GPU (core/team.h): two where one
+    // thread per particle would leave the GPU half idle (at most half its resident threads;
+    // bench/NOTES.md #12), else one. WEIR_TEAM=1 or 2 sets it (speed experiments).
+    int teamSize(Context& s) const {
+        if (teamOverride_ > 0) {
+            return teamOverride_;
+        }
+        return 2 * std::int64_t(s.store.count()) <= s.exec.residentThreads() ? 2 : 1;
+    }
+    static int teamOverride() {
+        const char* text = std::getenv("WEIR_TEAM");
+        const int wanted = text != nullptr ? std::atoi(text) : 0;
+        return wanted >= 2 ? 2 : (wanted == 1 ? 1 : 0);
+    }
+
+    Buffer<Real> pressureTerm_;  // the density stage's pressureTermOf, for the force stage
+    Buffer<Real4> acc_;          // the paper's stages: force stage to displacement stage
+    int teamOverride_ = teamOverride();
+};
+
+}  // namespace weir

@@ -1,0 +1,142 @@
+// The stages of weakly compressible SPH (paper §6.3, Müller et al. 2003), written once for CPU
+// and CUDA: density and pressure (eqs. 2-3), pressure and viscous force (eqs. 4-5), and the
+// displacement. Each stage reads what it needs and writes only particle i's own outputs.
+#pragma once
+
+#include <cmath>
+
+#include "core/config.h"
+#include "core/team.h"
+#include "core/vec3.h"
+#include "physics/boundary.h"
+#include "physics/collision.h"
+#include "physics/density.h"
+#include "physics/eos.h"
+#include "physics/faults.h"
+#include "physics/integration.h"
+#include "physics/kernels.h"
+#include "physics/particle_view.h"
+#include "physics/sph_params.h"
+#include "physics/time_step.h"
+#include "physics/wall_weight.h"
+
+namespace weir {
+
+// What the force stage needs of a neighbour's pressure: p / rho^2 for the symmetric pressure
+// force, p for the paper's eq. 4 (see pairForce). Computed once per particle by the density
+// stage rather than once per pair: the equation of state is a quarter of the pair's arithmetic.
+WEIR_HD inline Real pressureTermOf(const SphParams& params, Real rho) {
+    const Real p = pressureFromDensity(params, rho);
+    return params.pressureForce == PressureForm::Symmetric ? p / (rho * rho) : p;
+}
+
+// Eq. 2 with poly6, then the pressure term of eq. 3 for the force stage.
+// One thread per particle: teams measured slower here (bench/NOTES.md #12, #14).
+template <class Neighbours>
+WEIR_HD inline void densityPressureAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                      const SphParams& params) {
+    const Real rho = densityAt(i, pv, nb, params);
+    pv.vel[i].w = rho;
+    pv.pressureTerm[i] = pressureTermOf(params, rho);
+}
+
+// The pressure (spiky gradient) and viscous (eq. 5, its Laplacian) force density on i from j,
+// for r_vec = x_i - x_j and 0 < r < h. Pressure by the paper's eq. 4, m_j (p_i + p_j) / (2 rho_j),
+// or by the symmetric form rho_i m_j (p_i / rho_i^2 + p_j / rho_j^2) (Monaghan 1992): both
+// conserve momentum, but only the latter tends to grad p as particles get finer; eq. 4 tends to
+// grad p / 2 (its p_i term vanishes over a full neighbourhood), so a tank at rest under eq. 4
+// holds twice the hydrostatic pressure. termI, termJ: pressureTermOf the two densities, so the
+// symmetric form is m_j rho_i (termI + termJ).
+WEIR_HD inline Vec3 pairForce(const SphParams& params, const Vec3& rVec, Real r, Real invR,
+                              Real termI, Real termJ, Real rhoi, Real rhoj, const Vec3& vi,
+                              const Vec3& vj) {
+    const Real massOverRho = params.mass * reciprocal(rhoj);
+    const Real pressureDensity = params.pressureForce == PressureForm::Symmetric
+                                     ? params.mass * rhoi * (termI + termJ)
+                                     : massOverRho * Real(0.5) * (termI + termJ);
+    Real pressure = -pressureDensity * spikyGradientFactor(params.kernel, r, invR);
+    Real viscous = params.viscosity * massOverRho * viscosityLaplacian(params.kernel, r);
+    return rVec * pressure + (vj - vi) * viscous;
+}
+
+// Acceleration of particle i: (pressure + viscous force density) / rho_i + gravity. A team
+// (core/team.h) shares the neighbours, and every lane gets the whole acceleration.
+template <class Neighbours, int TeamSize = 1>
+WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighbours& nb,
+                                   const SphParams& params, Team<TeamSize> team = {}) {
+    const Vec3 xi = pv.position(i);
+    const Real4 vi = pv.vel[i];
+    const Real rhoi = vi.w, pi = pressureFromDensity(params, rhoi), h2 = params.kernel.h2;
+    const Real termI = pv.pressureTerm[i];
+    Vec3 force;
+    nb.forEachCandidate(
+        i,
+        [&](Index j) {
+            Vec3 rVec = xi - pv.position(j);
+            Real r2 = lengthSquared(rVec);
+            if (r2 < h2 && r2 > Real(0)) {
+                const Real4 vj = pv.vel[j];
+                const Real invR = reciprocalSqrt(r2);
+                force += pairForce(params, rVec, r2 * invR, invR, termI, pv.pressureTerm[j], rhoi,
+                                   vj.w, vi.xyz(), vj.xyz());
+            }
+        },
+        team);
+    force = Vec3(team.sum(force.x), team.sum(force.y), team.sum(force.z));
+    const Vec3 walls =
+        params.walls == WallKind::Simple
+            ? wallAcceleration(params.wallWeight, params.boxMin, params.boxMax, xi, rhoi, pi)
+            : boundaryAcceleration(pv.boundary, params.kernel, xi, vi.xyz(), rhoi, pi,
+                                   params.wallViscosity, params.invRestDensity);
+    return force / rhoi + params.gravity + walls;
+}
+
+template <class Neighbours, int TeamSize = 1>
+WEIR_HD inline void accelerationAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                   const SphParams& params, Team<TeamSize> team = {}) {
+    const Vec3 a = accelerationOf(i, pv, nb, params, team);
+    if (team.leader()) {
+        pv.acc[i] = Real4::from(a);
+    }
+}
+
+// The paper's displacement stage: integrates particle i with the acceleration of the force stage.
+WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams& params,
+                                const ObstacleView& obstacles, FaultRecord* fault,
+                                StepClock* clock) {
+    if (isGhost(pv.pos[i])) {
+        return;
+    }
+    Vec3 x = pv.position(i), v = pv.velocity(i);
+    advanceParticle(x, v, pv.acc[i].xyz(), i, params, obstacles, fault, clock);
+    pv.pos[i] = Real4::from(x);
+    pv.vel[i] = Real4::from(v, pv.vel[i].w);  // keeps the step's density for output
+}
+
+// Force and displacement fused: the new state goes to separate arrays, since other particles
+// still read this one's position and velocity in the same pass. Saves the acceleration array
+// and a pass over the particles.
+template <class Neighbours, int TeamSize = 1>
+WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                             const SphParams& params, const ObstacleView& obstacles,
+                                             FaultRecord* fault, StepClock* clock, Real4* newPos,
+                                             Real4* newVel, Team<TeamSize> team = {}) {
+    const Real4 v4 = pv.vel[i];
+    if (clock->dt == Real(0) || isGhost(pv.pos[i])) {  // a no-op step, or a ghost: carried over
+        if (team.leader()) {
+            newPos[i] = pv.pos[i];
+            newVel[i] = v4;
+        }
+        return;
+    }
+    const Vec3 a = accelerationOf(i, pv, nb, params, team);
+    if (!team.leader()) {
+        return;
+    }
+    Vec3 x = pv.position(i), v = v4.xyz();
+    advanceParticle(x, v, a, i, params, obstacles, fault, clock);
+    newPos[i] = Real4::from(x);
+    newVel[i] = Real4::from(v, v4.w);
+}
+
+}  // namespace weir
