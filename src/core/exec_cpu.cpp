@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace weir {
@@ -95,6 +96,35 @@ void CpuExec::inclusiveMaxScan(Index* data, Index n) {
         data[i] = std::max(data[i], data[i - 1]);
     }
 }
+
+namespace {
+
+template <class T>
+void sumOnCores(const T* in, Index n, T* out) {
+    double total = 0;  // float sums in double: the CPU's answer is the accurate one
+#pragma omp parallel for schedule(static) reduction(+ : total)
+    for (Index i = 0; i < n; ++i) {
+        total += double(in[i]);
+    }
+    *out = T(total);
+}
+
+template <class T>
+void maxOnCores(const T* in, Index n, T* out) {
+    T best = std::numeric_limits<T>::lowest();
+#pragma omp parallel for schedule(static) reduction(max : best)
+    for (Index i = 0; i < n; ++i) {
+        best = in[i] > best ? in[i] : best;
+    }
+    *out = best;
+}
+
+}  // namespace
+
+void CpuExec::sum(const float* in, Index n, float* out) { sumOnCores(in, n, out); }
+void CpuExec::sum(const double* in, Index n, double* out) { sumOnCores(in, n, out); }
+void CpuExec::max(const float* in, Index n, float* out) { maxOnCores(in, n, out); }
+void CpuExec::max(const double* in, Index n, double* out) { maxOnCores(in, n, out); }
 
 void CpuExec::stageBegin(const char*) {
     if (timing) {

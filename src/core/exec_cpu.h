@@ -64,6 +64,13 @@ class CpuExec {
     void inclusiveScan(const Index* in, Index* out, Index n);
     // data[i] = max(data[0], ..., data[i]), in place.
     void inclusiveMaxScan(Index* data, Index n);
+    // *out = in[0] + ... + in[n - 1] (0 for n = 0) and *out = max(in[0], ..., in[n - 1]) (the
+    // lowest value for n = 0), out in this backend's memory: the device keeps the result, so an
+    // iterative solver tests convergence with no host round trip (graph-capturable on CUDA).
+    void sum(const float* in, Index n, float* out);
+    void sum(const double* in, Index n, double* out);
+    void max(const float* in, Index n, float* out);
+    void max(const double* in, Index n, double* out);
 
     template <class T>
     void upload(Buffer<T>& dst, const T* src, std::size_t n) const {

@@ -1,6 +1,7 @@
 // CUDA primitives: CUB radix sort and scan with persistent scratch, event timing, device info.
 #include <cstdlib>
 #include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_reduce.cuh>
 #include <cub/device/device_scan.cuh>
 #include <cuda/functional>
 #include <sstream>
@@ -70,6 +71,40 @@ void CudaExec::inclusiveScan(const Index* in, Index* out, Index n) {
     bytes = scanTemp_.size();
     WEIR_CUDA_CHECK(cub::DeviceScan::InclusiveSum(scanTemp_.data(), bytes, in, out, n, stream_));
 }
+
+unsigned char* CudaExec::reduceScratch(std::size_t bytes) {
+    if (reduceTemp_.size() < bytes) {
+        cudaStreamCaptureStatus capturing = cudaStreamCaptureStatusNone;
+        WEIR_CUDA_CHECK(cudaStreamIsCapturing(stream_, &capturing));
+        WEIR_REQUIRE(
+            capturing == cudaStreamCaptureStatusNone,
+            "a reduction of a new size inside a graph capture (" << bytes << " bytes of scratch)");
+        reduceTemp_.resize(bytes);
+    }
+    return reduceTemp_.data();
+}
+
+namespace {
+
+template <class T>
+void cubSum(CudaExec& exec, const T* in, Index n, T* out, cudaStream_t stream,
+            unsigned char* (CudaExec::*scratch)(std::size_t)) {
+    std::size_t bytes = 0;
+    WEIR_CUDA_CHECK(cub::DeviceReduce::Sum(nullptr, bytes, in, out, n, stream));
+    unsigned char* temp = (exec.*scratch)(bytes);
+    WEIR_CUDA_CHECK(cub::DeviceReduce::Sum(temp, bytes, in, out, n, stream));
+}
+
+template <class T>
+void cubMax(CudaExec& exec, const T* in, Index n, T* out, cudaStream_t stream,
+            unsigned char* (CudaExec::*scratch)(std::size_t)) {
+    std::size_t bytes = 0;
+    WEIR_CUDA_CHECK(cub::DeviceReduce::Max(nullptr, bytes, in, out, n, stream));
+    unsigned char* temp = (exec.*scratch)(bytes);
+    WEIR_CUDA_CHECK(cub::DeviceReduce::Max(temp, bytes, in, out, n, stream));
+}
+
+}  // namespace
 
 void CudaExec::inclusiveMaxScan(Index* data, Index n) {
     std::size_t bytes = 0;
@@ -176,6 +211,19 @@ int useCudaDeviceOf(int rankOnHost) {
     const int ordinal = rankOnHost % count;
     WEIR_CUDA_CHECK(cudaSetDevice(ordinal));
     return ordinal;
+}
+
+void CudaExec::sum(const float* in, Index n, float* out) {
+    cubSum(*this, in, n, out, stream_, &CudaExec::reduceScratch);
+}
+void CudaExec::sum(const double* in, Index n, double* out) {
+    cubSum(*this, in, n, out, stream_, &CudaExec::reduceScratch);
+}
+void CudaExec::max(const float* in, Index n, float* out) {
+    cubMax(*this, in, n, out, stream_, &CudaExec::reduceScratch);
+}
+void CudaExec::max(const double* in, Index n, double* out) {
+    cubMax(*this, in, n, out, stream_, &CudaExec::reduceScratch);
 }
 
 }  // namespace weir

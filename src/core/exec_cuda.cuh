@@ -172,6 +172,12 @@ class CudaExec {
     void inclusiveScan(const Index* in, Index* out, Index n);
     // data[i] = max(data[0], ..., data[i]), in place, by CUB.
     void inclusiveMaxScan(Index* data, Index n);
+    // *out = the sum and the maximum of in[0, n) by CUB, out in device memory: no host round
+    // trip, capturable in a graph (once a call of that size has sized the scratch outside one).
+    void sum(const float* in, Index n, float* out);
+    void sum(const double* in, Index n, double* out);
+    void max(const float* in, Index n, float* out);
+    void max(const double* in, Index n, double* out);
 
     template <class T>
     void upload(Buffer<T>& dst, const T* src, std::size_t n) {
@@ -282,7 +288,10 @@ class CudaExec {
 
     cudaStream_t stream_ = nullptr;
     int multiprocessors_ = 1;
-    DeviceBuffer<unsigned char> sortTemp_, scanTemp_;
+    // Scratch of CUB's reductions of `bytes`, grown outside graph capture only.
+    unsigned char* reduceScratch(std::size_t bytes);
+
+    DeviceBuffer<unsigned char> sortTemp_, scanTemp_, reduceTemp_;
     std::vector<cudaEvent_t> eventPool_;
     std::size_t eventsUsed_ = 0;
     cudaEvent_t openEvent_ = nullptr;

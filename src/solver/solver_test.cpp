@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "core/check.h"
+#include "solver/methods.h"
 #include "solver/solver_test_support.h"
 
 namespace weir {
@@ -237,6 +238,25 @@ TEST(Solver, FrameZeroHasDensity) {
 }
 
 TEST(Solver, SeedsOnItsBackendAsTheHostDoes) { expectBackendSeedingMatchesTheHost(Backend::Cpu); }
+
+TEST(Solver, PressureSolversComeFromTheRegistry) {
+    // The default is the registry's first entry; an unknown name is refused with the list.
+    const std::vector<MethodInfo> methods = pressureSolvers();
+    ASSERT_FALSE(methods.empty());
+    EXPECT_EQ(methods.front().name, "wcsph");
+    EXPECT_EQ(checkPressureSolver(""), "wcsph");
+    SimulationSetup setup = buildSetup(smallDamBreak(300), {}, nullptr);
+    auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, setup);
+    EXPECT_EQ(sim->method(), "wcsph");
+    setup.method = "sph-of-dreams";
+    try {
+        makeSimulation(Backend::Cpu, NeighbourMode::Auto, setup);
+        FAIL() << "an unknown pressure solver was accepted";
+    } catch (const SimulationError& e) {
+        EXPECT_NE(std::string(e.what()).find("sph-of-dreams"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("allowed are wcsph"), std::string::npos) << e.what();
+    }
+}
 
 }  // namespace
 }  // namespace weir
