@@ -8,6 +8,7 @@
 
 #include "scene/scene.h"
 #include "scene/setup.h"
+#include "solver/simulation.h"
 
 namespace weir {
 namespace {

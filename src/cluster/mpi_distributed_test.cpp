@@ -8,20 +8,16 @@
 #include <cmath>
 #include <set>
 
-#include "cli/commands.h"
 #include "cluster/communicator.h"
 #include "cluster/distributed_simulation.h"
+#include "cluster/mpi_test_support.h"
 #include "core/backend.h"
-#include "io/frame_reader.h"
 #include "solver/solver_test_support.h"
 
 namespace weir {
 namespace {
 
-Communicator& world() {
-    static std::unique_ptr<Communicator> comm = worldCommunicator();
-    return *comm;
-}
+using testing::world;
 
 // The largest distance between a particle in the distributed run and in the single-rank run
 // after `time` seconds, on rank 0 (-1 elsewhere).
@@ -219,61 +215,5 @@ TEST(Distributed, BordersFollowTheFluid) {
     EXPECT_LT(imbalance(counts), 1.15);
 }
 
-// `mpirun -n R weir run` writes one set of frames (rank 0 gathers them) holding the single-rank
-// run's fluid.
-TEST(Distributed, RunWritesTheFramesOfTheSingleRankRun) {
-    const std::string out = ::testing::TempDir() + "weir_mpi_run_" + std::to_string(world().size());
-    RunOptions options;
-    options.scene = "dam_break";
-    options.backend = "cpu";
-    options.particles = 3000;
-    options.frames = 3;
-    options.outDir = out;
-    options.quiet = true;
-    ASSERT_EQ(runCommand(options), 0);
-    if (world().rank() != 0) {
-        return;
-    }
-    SetupOptions setupOptions;
-    setupOptions.particleCount = 3000;
-    SetupReport report;
-    auto plain = makeSimulation(Backend::Cpu, NeighbourMode::Auto,
-                                buildSetup(builtinScene("dam_break"), setupOptions, &report));
-    for (int frame = 1; frame <= 3; ++frame) {  // landing on each frame time, as the run does
-        plain->advanceTo(frame * report.frameInterval);
-    }
-    HostParticles want;
-    plain->download(want);
-    double time = 0;
-    const HostParticles got = readVtu(out + "/frame_00003.vtu", &time);
-    EXPECT_DOUBLE_EQ(time, 3 * report.frameInterval);
-    ASSERT_EQ(got.size(), want.size());
-    EXPECT_LT(testing::maxPositionDifference(got, want), 1e-3 * report.spacing);
-}
-
-// gtest's printer on rank 0 only; a failure on any rank fails every rank's exit code.
-int runAllTests(int argc, char** argv) {
-    ::testing::InitGoogleTest(&argc, argv);
-    if (world().rank() != 0) {
-        delete ::testing::UnitTest::GetInstance()->listeners().Release(
-            ::testing::UnitTest::GetInstance()->listeners().default_result_printer());
-    }
-    const int mine = RUN_ALL_TESTS();
-    std::vector<double> any{double(mine)};
-    world().maxInPlace(any);
-    if (mine != 0) {
-        std::fprintf(stderr, "weir_mpi_tests: failures on %s\n", world().where().c_str());
-    }
-    return any[0] != 0 ? 1 : 0;
-}
-
 }  // namespace
 }  // namespace weir
-
-int main(int argc, char** argv) {
-    weir::startCommunication(&argc, &argv);
-    weir::selectCudaDevice(weir::localRank());
-    const int code = weir::runAllTests(argc, argv);
-    weir::endCommunication();
-    return code;
-}

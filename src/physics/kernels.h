@@ -73,4 +73,25 @@ WEIR_HD inline Real viscosityLaplacian(const KernelCoefficients& k, Real r) {
     return k.viscLaplace * (Real(1) - r * k.invH);
 }
 
+// Sum over a cubic lattice of spacing 1 of poly6 with radius `ratio` (W d^3, in double): 1 for an
+// exact kernel; the particle mass is corrected by it so that the seeded lattice sits at the rest
+// density (scene/setup.cpp).
+inline double latticeKernelSum(double ratio) {
+    const int reach = int(std::ceil(ratio));
+    const double poly6 = double(KernelCoefficients::forRadius(ratio).poly6);  // as the step has it
+    double sum = 0;
+    for (int i = -reach; i <= reach; ++i) {
+        for (int j = -reach; j <= reach; ++j) {
+            for (int l = -reach; l <= reach; ++l) {
+                const double r2 = double(i * i + j * j + l * l);
+                if (r2 < ratio * ratio) {
+                    const double t = 1.0 - r2 / (ratio * ratio);
+                    sum += poly6 * t * t * t;
+                }
+            }
+        }
+    }
+    return sum;
+}
+
 }  // namespace weir

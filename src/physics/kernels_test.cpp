@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "scene/setup.h"
+#include "physics/kernels.h"
 
 namespace weir {
 namespace {

@@ -61,31 +61,6 @@ std::string fmt(double v) {
 
 }  // namespace
 
-namespace {
-
-// Sum of poly6 (radius `ratio`, lattice spacing 1) over the lattice sites with x-index >= firstX.
-double latticeSum(double ratio, int firstX) {
-    KernelCoefficients k = KernelCoefficients::forRadius(ratio);
-    int reach = int(std::ceil(ratio));
-    double sum = 0;
-    for (int i = std::max(-reach, firstX); i <= reach; ++i) {
-        for (int j = -reach; j <= reach; ++j) {
-            for (int l = -reach; l <= reach; ++l) {
-                double r2 = double(i * i + j * j + l * l);
-                if (r2 < ratio * ratio) {
-                    double t = 1.0 - r2 / (ratio * ratio);
-                    sum += double(k.poly6) * t * t * t;
-                }
-            }
-        }
-    }
-    return sum;
-}
-
-}  // namespace
-
-double latticeKernelSum(double ratio) { return latticeSum(ratio, -int(std::ceil(ratio))); }
-
 HostParticles seedParticles(const Scene& scene, double spacing) {
     HostParticles particles;
     forEachSeed(sceneSeeds(scene, spacing),

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "physics/kernels.h"
 #include "scene/scene.h"
 #include "solver/simulation_setup.h"
 
@@ -40,8 +41,5 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
 
 // Initial particles on a cubic lattice of spacing d filling the scene's blocks and spheres.
 HostParticles seedParticles(const Scene& scene, double spacing);
-
-// Sum over a cubic lattice of spacing 1 of poly6 with radius `ratio` (W * d^3), in double.
-double latticeKernelSum(double ratio);
 
 }  // namespace weir
