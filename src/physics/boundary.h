@@ -25,6 +25,8 @@ namespace weir {
 
 struct BoundaryView {
     const Real4* pos = nullptr;           // x, y, z, psi; in cell order
+    const Real4* normal = nullptr;        // unit normal into the fluid, depth behind the surface
+    const Real4* velocity = nullptr;      // the wall's velocity at each (null: walls at rest)
     const unsigned char* near = nullptr;  // per cell: a boundary particle in its 27 cells
     CellTableView cells{};                // h-wide cells (grid/cell_walk.h)
     Index count = 0;
@@ -83,7 +85,9 @@ WEIR_HD inline Vec3 boundaryAcceleration(const BoundaryView& bv, const KernelCoe
 
 // The boundary particles and their static grid, as built on the host (scene/boundary.cpp).
 struct BoundaryParticles {
-    std::vector<Real4> pos;  // x, y, z, psi; in cell order
+    std::vector<Real4> pos;       // x, y, z, psi; in cell order
+    std::vector<Real4> normal;    // unit normal into the fluid, depth behind the wall surface
+    std::vector<Real4> velocity;  // the wall's velocity at each; empty: every wall at rest
     std::vector<Index> cellStart;
     std::vector<unsigned char> near;
     Vec3 origin;

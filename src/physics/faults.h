@@ -6,13 +6,22 @@
 
 namespace weir {
 
-enum class FaultCode : int { None = 0, NotFinite = 1, TooFast = 2, Escaped = 3 };
+// Compressed: a density past the bound (physics/sph_params.h maxDensityRatio); Collapsed: two
+// particles on the same point (the kernel then pushes them apart no more).
+enum class FaultCode : int {
+    None = 0,
+    NotFinite = 1,
+    TooFast = 2,
+    Escaped = 3,
+    Compressed = 4,
+    Collapsed = 5
+};
 
 struct FaultRecord {
     int code;      // FaultCode
     int step;      // step number at which it happened
     int particle;  // index in cell order at that step
-    float value;   // speed, for TooFast
+    float value;   // speed for TooFast, rho / rho0 for Compressed
     float time;    // simulated time at the end of that step, s
 };
 

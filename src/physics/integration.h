@@ -51,4 +51,23 @@ WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
     }
 }
 
+// Records a fault for a density past the bound or particles on one point (the first fault of the
+// run wins; dt of the current step for its time).
+WEIR_HD inline void checkDensity(Real rho, bool collapsed, Index i, const SphParams& params,
+                                 FaultRecord* fault, const StepClock* clock) {
+    FaultCode code = FaultCode::None;
+    if (collapsed) {
+        code = FaultCode::Collapsed;
+    } else if (params.maxDensityRatio > Real(0) &&
+               !(rho <= params.maxDensityRatio * params.restDensity)) {
+        code = FaultCode::Compressed;
+    }
+    if (code != FaultCode::None && claimFault(fault, code)) {
+        fault->step = clock->step;
+        fault->particle = i;
+        fault->value = float(rho * params.invRestDensity);
+        fault->time = float(clock->time + double(clock->dt));
+    }
+}
+
 }  // namespace weir

@@ -18,6 +18,14 @@ enum class EosKind : int { Linear = 0, Tait = 1 };
 // or the paper's eq. 4, m_j (p_i + p_j) / (2 rho_j) (tends to grad p / 2). physics/stages.h.
 enum class PressureForm : int { Symmetric = 0, Paper = 1 };
 enum class WallKind : int { Simple = 0, Particles = 1 };
+// The fluid model. Paper: Müller et al. 2003 as the paper has it (summation density with poly6,
+// pressure by the spiky gradient, viscosity by the viscosity kernel's Laplacian), two passes
+// over the neighbours. DeltaSph: weakly compressible SPH as modern codes run it (Antuono et al.
+// 2010; Fourtakas et al. 2019; DualSPHysics): Wendland C2, density by the continuity equation
+// with density diffusion, the fluid's own viscosity by Morris et al. 1997's operator, a small
+// artificial viscosity only between approaching particles, walls that extrapolate pressure and
+// velocity; one pass over the neighbours per step. physics/delta_sph.h.
+enum class FluidModel : int { Paper = 0, DeltaSph = 1 };
 
 struct SphParams {
     KernelCoefficients kernel;
@@ -48,6 +56,19 @@ struct SphParams {
     WallWeightTable wallWeight;  // the simple walls' planes (physics/wall_weight.h); empty: bare
     Real wallViscosity = 0;      // mu against boundary particles, Pa s (0: free slip)
     Real maxSpeed = 0;           // blow-up bound, m/s
+
+    // The delta-SPH model (FluidModel::DeltaSph; physics/delta_sph.h).
+    FluidModel model = FluidModel::Paper;
+    WendlandKernel wendland;           // with the lattice-moment correction of its gradient
+    Real dynamicViscosity = 0;         // mu, the fluid's own, Pa s (Morris et al. 1997)
+    Real viscositySoftening = 0;       // eta^2 = 0.01 (h/2)^2 of Morris's operator, m^2
+    Real artificialViscosity = 0;      // alpha c (h/2), m^2/s (Monaghan 1992; approaching pairs)
+    Real densityDiffusion = 0;         // delta c h, m^2/s (Molteni & Colagrossi 2009)
+    Vec3 hydrostaticGradient;          // rho0 g / c^2, kg/m^4: the hydrostatic part that density
+                                       // diffusion leaves alone (Fourtakas et al. 2019)
+    bool noSlip = false;               // walls: no-slip (true) or free slip
+    Real maxWallVelocityFactor = 1.5;  // Morris's cap on 1 + d_b / d_i at no-slip walls
+    Real maxDensityRatio = 0;          // blow-up bound on rho / rho0 (0: none)
 };
 
 }  // namespace weir

@@ -17,12 +17,17 @@ Vec3d cross(const Vec3d& a, const Vec3d& b) {
 }
 Vec3d normalize(const Vec3d& v) { return v / length(v); }
 
-// Collects points, dropping any closer than minDistance to one already kept (spatial hash).
+// Collects points with their wall normal (into the fluid), depth behind the wall surface and
+// container face (-1: an obstacle), dropping any closer than minDistance to one already kept
+// (spatial hash).
 class PointSet {
    public:
     explicit PointSet(double minDistance) : min_(minDistance), cell_(minDistance) {}
 
-    void add(const Vec3d& p) {
+    // The depth of the points added next.
+    void setDepth(double depth) { depth_ = depth; }
+
+    void add(const Vec3d& p, const Vec3d& normal, int face = -1) {
         const long cx = cellOf(p.x), cy = cellOf(p.y), cz = cellOf(p.z);
         for (long dx = -1; dx <= 1; ++dx) {
             for (long dy = -1; dy <= 1; ++dy) {
@@ -32,17 +37,20 @@ class PointSet {
                         continue;
                     }
                     for (std::size_t k : it->second) {
-                        if (lengthSquared(points_[k] - p) < min_ * min_) {
+                        if (lengthSquared(samples_.points[k] - p) < min_ * min_) {
                             return;
                         }
                     }
                 }
             }
         }
-        cells_[key(cx, cy, cz)].push_back(points_.size());
-        points_.push_back(p);
+        cells_[key(cx, cy, cz)].push_back(samples_.points.size());
+        samples_.points.push_back(p);
+        samples_.normals.push_back(normal);
+        samples_.depths.push_back(depth_);
+        samples_.faces.push_back(face);
     }
-    std::vector<Vec3d> take() { return std::move(points_); }
+    BoundarySamples take() { return std::move(samples_); }
 
    private:
     long cellOf(double v) const { return long(std::floor(v / cell_)); }
@@ -51,12 +59,16 @@ class PointSet {
                std::uint64_t(z & 0x1FFFFF);
     }
     double min_, cell_;
-    std::vector<Vec3d> points_;
+    double depth_ = 0;
+    BoundarySamples samples_;
     std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
 };
 
-// The surface of box [lo, hi] on a lattice of spacing close to d (each axis divided evenly).
-void sampleBoxSurface(const Vec3d& lo, const Vec3d& hi, double d, PointSet& out) {
+// The surface of box [lo, hi] on a lattice of spacing close to d (each axis divided evenly), each
+// point with its face's normal into the fluid (the mean of its faces' at edges and corners):
+// inward for the container (`container`, which also names each point's first face 0..5 as
+// -x, +x, -y, +y, -z, +z), outward for an obstacle.
+void sampleBoxSurface(const Vec3d& lo, const Vec3d& hi, double d, bool container, PointSet& out) {
     long n[3];
     double step[3];
     for (int a = 0; a < 3; ++a) {
@@ -69,8 +81,19 @@ void sampleBoxSurface(const Vec3d& lo, const Vec3d& hi, double d, PointSet& out)
             const bool faceYZ = k == 0 || k == n[2] || j == 0 || j == n[1];
             for (long i = 0; i <= n[0]; ++i) {
                 if (faceYZ || i == 0 || i == n[0]) {
+                    const long at[3] = {i, j, k};
+                    Vec3d normal;
+                    int face = -1;
+                    for (int a = 0; a < 3; ++a) {
+                        if (at[a] == 0 || at[a] == n[a]) {
+                            const int side = at[a] == 0 ? 0 : 1;
+                            normal[a] = (side == 0) == container ? 1.0 : -1.0;
+                            face = face < 0 ? 2 * a + side : face;
+                        }
+                    }
                     out.add({lo.x + double(i) * step[0], lo.y + double(j) * step[1],
-                             lo.z + double(k) * step[2]});
+                             lo.z + double(k) * step[2]},
+                            normalize(normal), container ? face : -1);
                 } else {
                     i = n[0] - 1;  // skip the interior of this row
                 }
@@ -87,7 +110,8 @@ void sampleSphereSurface(const Vec3d& centre, double radius, double d, PointSet&
         const double y = 1.0 - 2.0 * (double(k) + 0.5) / double(count);
         const double ring = std::sqrt(std::max(0.0, 1.0 - y * y));
         const double phi = golden * double(k);
-        out.add(centre + Vec3d(ring * std::cos(phi), y, ring * std::sin(phi)) * radius);
+        const Vec3d direction(ring * std::cos(phi), y, ring * std::sin(phi));
+        out.add(centre + direction * radius, direction);
     }
 }
 
@@ -106,8 +130,9 @@ void sampleTriangle(const Vec3d& a, const Vec3d& b, const Vec3d& c, double d, do
     const long n = std::max(1L, long(std::ceil(longest / d)));
     for (long i = 0; i <= n; ++i) {
         for (long j = 0; i + j <= n; ++j) {
-            out.add(a + e1 * (double(i) / double(n)) + e2 * (double(j) / double(n)) +
-                    normal * offset);
+            out.add(
+                a + e1 * (double(i) / double(n)) + e2 * (double(j) / double(n)) + normal * offset,
+                normal);
         }
     }
 }
@@ -145,21 +170,28 @@ bool insideMesh(const MeshObstacle& mesh, const Vec3d& p) {
     return (crossings & 1) != 0;
 }
 
-int boundaryLayers(double h, double d) { return std::max(1, int(std::ceil(h / d - 1e-9)) - 1); }
+int boundaryLayers(double h, double d, bool fullSupport) {
+    const int reach = int(std::ceil(h / d - 1e-9));
+    return std::max(1, fullSupport ? reach : reach - 1);
+}
 
 std::vector<Vec3d> sampleBoundary(const Scene& scene, double d, double h) {
+    return sampleBoundary(scene, d, h, boundaryLayers(h, d)).points;
+}
+
+BoundarySamples sampleBoundary(const Scene& scene, double d, double, int layers) {
     PointSet points(0.5 * d);
-    const int layers = boundaryLayers(h, d);
     for (int layer = 0; layer < layers; ++layer) {
         const double depth = (layer + 0.5) * d;  // behind the surface
+        points.setDepth(depth);
         const Vec3d out(depth, depth, depth);
-        sampleBoxSurface(scene.container.min - out, scene.container.max + out, d, points);
+        sampleBoxSurface(scene.container.min - out, scene.container.max + out, d, true, points);
         for (const Box& box : scene.obstacleBoxes) {
             Vec3d inset = out;
             for (int a = 0; a < 3; ++a) {
                 inset[a] = std::min(inset[a], 0.5 * (box.max[a] - box.min[a]));
             }
-            sampleBoxSurface(box.min + inset, box.max - inset, d, points);
+            sampleBoxSurface(box.min + inset, box.max - inset, d, false, points);
         }
         for (const SphereShape& s : scene.obstacleSpheres) {
             if (s.radius - depth > 0.25 * d || layer == 0) {
@@ -179,6 +211,18 @@ std::vector<Vec3d> sampleBoundary(const Scene& scene, double d, double h) {
 
 BoundaryParticles buildBoundary(const std::vector<Vec3d>& points, const Box& container, double h,
                                 double restDensity, double fullVolume) {
+    BoundarySamples samples;
+    samples.points = points;
+    samples.normals.assign(points.size(), Vec3d());
+    samples.depths.assign(points.size(), 0.0);
+    samples.faces.assign(points.size(), -1);
+    return buildBoundary(samples, container, h, restDensity, fullVolume, BoundaryKernel::Poly6);
+}
+
+BoundaryParticles buildBoundary(const BoundarySamples& samples, const Box& container, double h,
+                                double restDensity, double fullVolume, BoundaryKernel kernel,
+                                const std::array<Vec3d, 6>* faceVelocity) {
+    const std::vector<Vec3d>& points = samples.points;
     BoundaryParticles out;
     const Vec3d lo = container.min - Vec3d(h, h, h);
     int dims[3];
@@ -212,11 +256,14 @@ BoundaryParticles buildBoundary(const std::vector<Vec3d>& points, const Box& con
     }
     // psi = rho0 / sum_k W_bk, over the boundary neighbours within h (itself included).
     const double poly6 = 315.0 / (64.0 * kPi * h * h * h);
+    const WendlandKernel wendland = WendlandKernel::forRadius(h);
     std::vector<Vec3d> sorted(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
         sorted[i] = points[order[i]];
     }
     out.pos.resize(points.size());
+    out.normal.resize(points.size());
+    out.velocity.resize(faceVelocity != nullptr ? points.size() : 0);
     out.near.assign(cells, 0);
     for (std::size_t i = 0; i < sorted.size(); ++i) {
         const Vec3d& p = sorted[i];
@@ -234,7 +281,9 @@ BoundaryParticles buildBoundary(const std::vector<Vec3d>& points, const Box& con
                         const double r2 = lengthSquared(sorted[j] - p);
                         if (r2 < h * h) {
                             const double t = 1.0 - r2 / (h * h);
-                            sum += poly6 * t * t * t;
+                            sum += kernel == BoundaryKernel::Poly6
+                                       ? poly6 * t * t * t
+                                       : double(wendland.value(Real(std::sqrt(r2))));
                         }
                     }
                 }
@@ -243,6 +292,14 @@ BoundaryParticles buildBoundary(const std::vector<Vec3d>& points, const Box& con
         // Akinci's psi, capped at a full neighbourhood's (see scene/boundary.h).
         const double psi = std::min(restDensity / sum, restDensity * fullVolume);
         out.pos[i] = {Real(p.x), Real(p.y), Real(p.z), Real(psi)};
+        const std::size_t from = order[i];
+        const Vec3d& n = samples.normals[from];
+        out.normal[i] = {Real(n.x), Real(n.y), Real(n.z), Real(samples.depths[from])};
+        if (faceVelocity != nullptr) {
+            const int face = samples.faces[from];
+            const Vec3d v = face >= 0 ? (*faceVelocity)[std::size_t(face)] : Vec3d();
+            out.velocity[i] = {Real(v.x), Real(v.y), Real(v.z), 0};
+        }
     }
     return out;
 }

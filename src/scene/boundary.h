@@ -2,6 +2,7 @@
 // Akinci's volumes psi and the static grid, built once on the host at set-up.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "physics/boundary.h"
@@ -15,7 +16,25 @@ namespace weir {
 // as far as a fluid particle at the wall can see (boundaryLayers: 1 at h = 2d, 2 at h = 3d).
 // Points closer than d/2 to an earlier one are dropped (box edges, shared mesh edges).
 std::vector<Vec3d> sampleBoundary(const Scene& scene, double d, double h);
-int boundaryLayers(double h, double d);
+// Layers of boundary particles for smoothing radius h and spacing d: as many as the kernel
+// reaches past the first (1 at h = 2d, 2 at h = 3d), or with fullSupport every layer a fluid
+// particle closer than d/2 to the wall can reach (2 at h = 2d: the delta-SPH model's walls
+// extrapolate the fluid's pressure into them and need the whole support).
+int boundaryLayers(double h, double d, bool fullSupport = false);
+
+// The sampled points with what each stands for: its wall's normal into the fluid (zero where
+// unknown), its depth behind the wall surface and its container face (0..5 as -x, +x, -y, +y, -z,
+// +z; -1: an obstacle).
+struct BoundarySamples {
+    std::vector<Vec3d> points, normals;
+    std::vector<double> depths;
+    std::vector<int> faces;
+    std::size_t size() const { return points.size(); }
+};
+BoundarySamples sampleBoundary(const Scene& scene, double d, double h, int layers);
+
+// The kernel whose sums give Akinci's volumes: the paper model's poly6 or delta-SPH's Wendland.
+enum class BoundaryKernel { Poly6, Wendland };
 
 // psi_b = rho0 / sum_k W_bk for each point (Akinci et al. 2012, the boundary's own density sum),
 // capped at rho0 * fullVolume, the volume of a particle with a full neighbourhood
@@ -27,6 +46,11 @@ int boundaryLayers(double h, double d);
 // container and one cell of margin.
 BoundaryParticles buildBoundary(const std::vector<Vec3d>& points, const Box& container, double h,
                                 double restDensity, double fullVolume);
+// The same from samples with their normals and depths, by `kernel`; faceVelocity: the velocity
+// of each container face's particles (null: every wall at rest).
+BoundaryParticles buildBoundary(const BoundarySamples& samples, const Box& container, double h,
+                                double restDensity, double fullVolume, BoundaryKernel kernel,
+                                const std::array<Vec3d, 6>* faceVelocity = nullptr);
 
 // Whether p lies inside the closed triangle mesh (ray parity along +x).
 bool insideMesh(const MeshObstacle& mesh, const Vec3d& p);

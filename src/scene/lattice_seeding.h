@@ -79,7 +79,7 @@ void seedLattices(Exec& exec, ParticleStore<Exec>& store, const SceneSeeds& seed
                         const Vec3d p = lattice.point(start + k);
                         pos[at] = {Real(p.x), Real(p.y), Real(p.z), 0};
                         vel[at] = {Real(lattice.velocity.x), Real(lattice.velocity.y),
-                                   Real(lattice.velocity.z), 0};
+                                   Real(lattice.velocity.z), Real(lattice.densityAt(p))};
                         id[at] = globalBase + (k > 0 ? flag[k - 1] : 0);
                     }
                 });

@@ -12,11 +12,13 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 #include <string_view>
 #include <system_error>
 
 #include "scene/embedded_scenes.h"
 #include "scene/mesh_file.h"
+#include "solver/methods.h"
 
 namespace weir {
 namespace {
@@ -350,7 +352,7 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
 
     FieldReader top(root, "", source,
                     {"name", "description", "container", "blocks", "spheres", "obstacles", "fluid",
-                     "particles", "gravity", "time", "walls", "limits"});
+                     "particles", "gravity", "time", "walls", "limits", "solver"});
     Scene scene;
     scene.sourcePath = source;
     scene.name = top.string("name", defaultName);
@@ -360,8 +362,20 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     scene.description = top.string("description", "");
 
     top.require("container", "an object {\"min\": [x, y, z], \"max\": [x, y, z]}");
-    scene.container = readBox(top.object("container", {"min", "max"}));
+    FieldReader containerReader = top.object("container", {"min", "max", "periodic"});
+    scene.container = readBox(containerReader);
     const Box& container = scene.container;
+    if (const Json* periodic = containerReader.find("periodic")) {
+        if (!periodic->is_array() || periodic->size() != 3 || !(*periodic)[0].is_boolean() ||
+            !(*periodic)[1].is_boolean() || !(*periodic)[2].is_boolean()) {
+            containerReader.fail(containerReader.pathOf("periodic"),
+                                 containerReader.written("periodic"),
+                                 "three booleans [x, y, z]: which axes wrap around");
+        }
+        for (int a = 0; a < 3; ++a) {
+            scene.periodic[std::size_t(a)] = (*periodic)[std::size_t(a)].get<bool>();
+        }
+    }
 
     top.forEach("blocks", {"min", "max", "velocity"}, [&](const FieldReader& r) {
         FluidBlock block{readBox(r), r.vec3("velocity", Vec3d{})};
@@ -415,7 +429,27 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
 
     FieldReader fluid =
         top.object("fluid", {"preset", "restDensity", "viscosity", "stiffness", "eos",
-                             "pressureForce", "clampNegativePressure", "negativePressureScale"});
+                             "pressureForce", "clampNegativePressure", "negativePressureScale",
+                             "model", "artificialViscosity", "densityDiffusion"});
+    const std::string model = fluid.string("model", "paper");
+    if (model == "paper") {
+        scene.model = FluidModelName::Paper;
+    } else if (model == "delta-sph") {
+        scene.model = FluidModelName::DeltaSph;
+    } else {
+        fluid.fail(fluid.pathOf("model"), fluid.written("model"),
+                   "\"paper\" (Müller et al. 2003, the paper's) or \"delta-sph\" (Wendland "
+                   "kernel, density diffusion, the fluid's own viscosity)");
+    }
+    const bool delta = scene.model == FluidModelName::DeltaSph;
+    scene.artificialViscosity = fluid.optionalNumber("artificialViscosity", between(0, 1));
+    scene.densityDiffusion = fluid.optionalNumber("densityDiffusion", between(0, 1));
+    if (!delta && (scene.artificialViscosity || scene.densityDiffusion)) {
+        fluid.fail(
+            fluid.pathOf(scene.artificialViscosity ? "artificialViscosity" : "densityDiffusion"),
+            fluid.written(scene.artificialViscosity ? "artificialViscosity" : "densityDiffusion"),
+            "given only with \"model\": \"delta-sph\" (the paper's model has neither)");
+    }
     scene.preset = fluid.string("preset", "");
     if (!scene.preset.empty()) {
         const FluidPreset* preset = fluidPreset(scene.preset);
@@ -429,7 +463,8 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     scene.restDensity = fluid.number("restDensity", kPositive, scene.restDensity);
     scene.viscosity = fluid.optionalNumber("viscosity", atLeast(0));
     scene.stiffness = fluid.optionalNumber("stiffness", kPositive);
-    std::string eos = fluid.string("eos", "linear");
+    scene.eosGiven = fluid.find("eos") != nullptr;
+    std::string eos = fluid.string("eos", delta ? "tait" : "linear");
     if (eos == "linear") {
         scene.eos = EquationOfState::Linear;
     } else if (eos == "tait") {
@@ -447,6 +482,9 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     }
     scene.clampNegativePressure =
         fluid.boolean("clampNegativePressure", scene.clampNegativePressure);
+    if (delta && !fluid.find("clampNegativePressure")) {
+        scene.clampNegativePressure = false;  // continuity density: no surface deficiency
+    }
     scene.negativePressureScale = fluid.number("negativePressureScale", between(0, 1),
                                                scene.clampNegativePressure ? 0.0 : 1.0);
     if (fluid.find("clampNegativePressure") && fluid.find("negativePressureScale") &&
@@ -494,9 +532,9 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
                   "one of \"semi-implicit-euler\", \"explicit-euler\"");
     }
 
-    FieldReader walls = top.object("walls", {"model", "restitution", "friction"});
+    FieldReader walls = top.object("walls", {"model", "restitution", "friction", "slip", "moving"});
     std::string wallModel =
-        walls.string("model", scene.obstacleMeshes.empty() ? "simple" : "particles");
+        walls.string("model", scene.obstacleMeshes.empty() && !delta ? "simple" : "particles");
     if (wallModel == "simple") {
         scene.walls = WallModel::Simple;
     } else if (wallModel == "particles") {
@@ -513,8 +551,50 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     }
     scene.wallRestitution = walls.number("restitution", between(0, 1), scene.wallRestitution);
     scene.wallFriction = walls.number("friction", between(0, 1), scene.wallFriction);
+    const std::string slip = walls.string("slip", "no-slip");
+    if (slip == "no-slip" || slip == "free-slip") {
+        scene.noSlip = slip == "no-slip";
+    } else {
+        walls.fail(walls.pathOf("slip"), walls.written("slip"),
+                   "\"no-slip\" (the fluid sticks to the walls) or \"free-slip\"");
+    }
+    walls.forEach("moving", {"face", "velocity"}, [&](const FieldReader& r) {
+        r.require("face", "a container face: \"-x\", \"+x\", \"-y\", \"+y\", \"-z\" or \"+z\"");
+        const std::string face = r.string("face", "");
+        MovingWall moving;
+        if (face.size() != 2 || (face[0] != '-' && face[0] != '+') || face[1] < 'x' ||
+            face[1] > 'z') {
+            r.fail(r.pathOf("face"), r.written("face"),
+                   "one of \"-x\", \"+x\", \"-y\", \"+y\", \"-z\", \"+z\"");
+        }
+        moving.axis = face[1] - 'x';
+        moving.side = face[0] == '+' ? 1 : 0;
+        moving.velocity = r.vec3("velocity");
+        if (moving.velocity[moving.axis] != 0) {
+            r.fail(r.pathOf("velocity"), r.written("velocity"),
+                   "a velocity along the face (its " + std::string(1, face[1]) +
+                       " component 0: the wall slides, its particles stay put)");
+        }
+        scene.movingWalls.push_back(moving);
+    });
+    if (!scene.movingWalls.empty() && scene.walls != WallModel::Particles) {
+        walls.fail(walls.pathOf("moving"), walls.written("moving"),
+                   "given only with \"model\": \"particles\" (moving walls are boundary "
+                   "particles with a velocity)");
+    }
 
-    scene.maxSpeed = top.object("limits", {"maxSpeed"}).optionalNumber("maxSpeed", kPositive);
+    FieldReader limits = top.object("limits", {"maxSpeed", "maxCompression"});
+    scene.maxSpeed = limits.optionalNumber("maxSpeed", kPositive);
+    scene.maxCompression = limits.number("maxCompression", greaterThan(0), scene.maxCompression);
+
+    scene.solver = top.string("solver", "");
+    try {
+        scene.solver = checkPressureSolver(scene.solver);
+    } catch (const std::invalid_argument& e) {
+        const std::string allowed = e.what();
+        top.fail("solver", top.written("solver"),
+                 allowed.substr(allowed.find("allowed are ") + 12));
+    }
     return scene;
 }
 

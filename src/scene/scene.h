@@ -52,6 +52,17 @@ struct MeshObstacle {
 enum class Integrator { SemiImplicitEuler, ExplicitEuler };
 enum class EquationOfState { Linear, Tait };
 enum class WallModel { Simple, Particles };
+// "fluid.model": "paper" (Müller et al. 2003 as the paper has it) or "delta-sph" (physics/
+// delta_sph.h: Wendland C2, continuity density with density diffusion, Morris viscosity).
+enum class FluidModelName { Paper, DeltaSph };
+
+// A container face that moves along itself (its particles stay put: e.g. the top plate of a
+// Couette flow, periodic along the motion): "walls.moving": [{"face": "+y", "velocity": [..]}].
+struct MovingWall {
+    int axis = 0;  // 0, 1, 2 for x, y, z
+    int side = 0;  // 0: the face at container.min, 1: at container.max
+    Vec3d velocity;
+};
 
 // A named fluid: density (kg/m^3) and dynamic viscosity (Pa s) near 20 C.
 struct FluidPreset {
@@ -70,6 +81,7 @@ struct Scene {
     std::string description;     // "description", free text, optional
 
     Box container;                             // "container": {"min": [..], "max": [..]}, metres
+    std::array<bool, 3> periodic{};            // "container.periodic": [x, y, z] (no walls there)
     std::vector<FluidBlock> blocks;            // "blocks": [{"min","max","velocity"?}]
     std::vector<FluidSphere> spheres;          // "spheres": [{"center","radius","velocity"?}]
     std::vector<Box> obstacleBoxes;            // "obstacles": {"boxes": [{"min","max"}], ...
@@ -77,7 +89,11 @@ struct Scene {
     std::vector<MeshObstacle> obstacleMeshes;  //   "meshes": [{"file","scale"?,"translate"?}]}
 
     // "fluid": {...}
-    std::string preset;           // "preset": "water" | "oil" | "honey" ("" none: water-like)
+    std::string preset;  // "preset": "water" | "oil" | "honey" ("" none: water-like)
+    FluidModelName model = FluidModelName::Paper;  // "model"
+    std::optional<double> artificialViscosity;     // "artificialViscosity": alpha (delta-sph)
+    std::optional<double> densityDiffusion;        // "densityDiffusion": delta (delta-sph)
+    bool eosGiven = false;                         // "eos" was written (else the model's)
     double restDensity = 1000.0;  // "restDensity", kg/m^3, > 0 (default: the preset's)
     std::optional<double>
         viscosity;                 // "viscosity", dynamic mu of eq. 5, Pa s, >= 0; unset: derived
@@ -116,8 +132,13 @@ struct Scene {
     WallModel walls = WallModel::Simple;  // "model": "simple" (the paper) | "particles" (Akinci)
     double wallRestitution = 0.0;  // "restitution", in [0, 1]: normal speed kept after a bounce
     double wallFriction = 0.0;     // "friction", in [0, 1]: tangential speed removed on contact
+    bool noSlip = true;            // "slip": "no-slip" | "free-slip" (delta-sph, particles)
+    std::vector<MovingWall> movingWalls;  // "moving"
 
     std::optional<double> maxSpeed;  // "limits.maxSpeed", m/s, > 0; unset: derived
+    double maxCompression = 0.5;     // "limits.maxCompression": blow-up past rho0 (1 + this)
+
+    std::string solver;  // "solver": the pressure solver (solver/methods.h); "" the default
 };
 
 // Reads and validates a scene file; throws SceneError naming file, field, value, allowed range.

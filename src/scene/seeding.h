@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "core/config.h"
@@ -42,6 +43,14 @@ struct SeedLattice {
     std::int64_t nx = 0, ny = 0, nz = 0;
     int shape = 0;  // fluid shape number
     Vec3d velocity;
+    // The density it starts at: densityAtTop + densityPerDepth (top - x . up) below `top`.
+    Vec3d up{0, 1, 0};
+    double top = 0, densityAtTop = 0, densityPerDepth = 0;
+
+    WEIR_HD double densityAt(const Vec3d& p) const {
+        const double depth = top - dot(p, up);
+        return densityAtTop + densityPerDepth * (depth > 0 ? depth : 0);
+    }
 
     WEIR_HD std::int64_t points() const { return nx * ny * nz; }
     WEIR_HD Vec3d point(std::int64_t index) const {
@@ -107,8 +116,8 @@ SceneSeeds sceneSeeds(const Scene& scene, double spacing);
 // Whether p lies inside one of the seeds' mesh obstacles (host only).
 bool insideObstacleMesh(const SceneSeeds& seeds, const Vec3d& p);
 
-// Calls visit(position, velocity) for every kept lattice point, in order: shape by shape, each
-// lattice in its own order.
+// Calls visit(position, velocity) or visit(position, velocity, density) for every kept lattice
+// point, in order: shape by shape, each lattice in its own order.
 template <class F>
 void forEachSeed(const SceneSeeds& seeds, F&& visit) {
     const SeedShapes shapes = seeds.shapes();
@@ -116,7 +125,11 @@ void forEachSeed(const SceneSeeds& seeds, F&& visit) {
         for (std::int64_t k = 0; k < lattice.points(); ++k) {
             const Vec3d p = lattice.point(k);
             if (keepSeed(shapes, lattice, p) && !insideObstacleMesh(seeds, p)) {
-                visit(p, lattice.velocity);
+                if constexpr (std::is_invocable_v<F, const Vec3d&, const Vec3d&, double>) {
+                    visit(p, lattice.velocity, lattice.densityAt(p));
+                } else {
+                    visit(p, lattice.velocity);
+                }
             }
         }
     }

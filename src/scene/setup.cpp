@@ -16,6 +16,11 @@ namespace weir {
 namespace {
 
 constexpr std::int64_t kDefaultParticleCount = 20000;
+// delta-SPH's defaults: alpha of the artificial viscosity, delta of the density diffusion (the
+// value of Molteni & Colagrossi 2009 and DualSPHysics), the CFL number on h.
+constexpr double kDefaultArtificialViscosity = 0.01;
+constexpr double kDefaultDensityDiffusion = 0.1;
+constexpr double kDeltaSphCfl = 0.25;
 
 std::int64_t countSeeds(const Scene& scene, double d) { return sceneSeeds(scene, d).count; }
 
@@ -99,22 +104,26 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         throw SceneError(where + ": " + std::to_string(seeds.count) +
                          " particles exceed the limit of 2147483647");
     }
-    if (options.seedOnDevice && seeds.seedableOnDevice()) {
-        setup.seeder = std::make_shared<LatticeSeeder>(std::move(seeds));
-    } else {
-        forEachSeed(seeds, [&](const Vec3d& p, const Vec3d& v) { setup.particles.push(p, v); });
-    }
-
     // Smoothing radius and mass (§5.2: mass from density, volume and count). The lattice sum
     // corrects the mass so that the initial lattice sits exactly at the rest density; without
     // it poly6 at h = 2d reads 1% dense and the fluid starts with a jolt.
+    const bool deltaModel = scene.model == FluidModelName::DeltaSph;
     const double h = scene.smoothingRatio * d;
     report.smoothingRadius = h;
-    report.latticeKernelSum = latticeKernelSum(scene.smoothingRatio);
+    report.latticeKernelSum = deltaModel ? wendlandLatticeSum(scene.smoothingRatio)
+                                         : latticeKernelSum(scene.smoothingRatio);
     const double mass = scene.restDensity * d * d * d / report.latticeKernelSum;
+    report.gradientMoment = deltaModel ? wendlandLatticeMoment(scene.smoothingRatio) : 1.0;
+    say(deltaModel
+            ? "fluid model delta-SPH: Wendland C2 kernel, density by the continuity equation "
+              "with density diffusion, the fluid's own viscosity (Morris et al. 1997), walls "
+              "that extrapolate pressure and velocity (fluid.model \"paper\": the paper's)"
+            : "fluid model: the paper's (Müller et al. 2003: poly6 density, spiky pressure "
+              "gradient, viscosity kernel; fluid.model \"delta-sph\" for the modern one)");
     say("smoothing radius h = " + fmt(h) + " m (" + fmt(scene.smoothingRatio) + " d)");
     say("particle mass m = " + fmt(mass) + " kg = rho0 d^3 / " + fmt(report.latticeKernelSum) +
-        " (lattice sum of poly6, so the initial fluid is at rest density)");
+        (deltaModel ? " (lattice sum of Wendland C2" : " (lattice sum of poly6") +
+        ", so the initial fluid is at rest density)");
 
     // Expected speeds: free fall over the deepest column, plus any initial speed.
     const double g = length(scene.gravity);
@@ -185,10 +194,6 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             " of its value (1 is the equation as written)");
     }
 
-    // Viscosity: the scene's, or an artificial one that damps the pressure waves of a weakly
-    // compressible fluid (kinematic nu = alpha h c / 10 with alpha = 0.1, Monaghan's form).
-    double viscosity;
-    const double artificial = scene.restDensity * 0.1 * h * c / 10.0;
     if (!scene.preset.empty()) {
         const FluidPreset* preset = fluidPreset(scene.preset);
         say("fluid " + scene.preset + ": rho0 = " + fmt(preset->density) +
@@ -197,7 +202,36 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
                  ? "; rho0 overridden to " + fmt(scene.restDensity) + " (scene)"
                  : ""));
     }
-    if (scene.viscosity) {
+    // Viscosity. The paper's model: the scene's, or the fluid's own plus an artificial one that
+    // damps the pressure waves of a weakly compressible fluid (kinematic nu = alpha h c / 10 with
+    // alpha = 0.1, Monaghan's form), all of it through eq. 5. delta-SPH: the fluid's own alone
+    // through Morris's operator; pressure waves are damped by density diffusion and a small
+    // artificial viscosity between approaching particles only.
+    double viscosity;  // the paper's model: mu of eq. 5; delta-SPH: the fluid's own mu
+    double alpha = 0, delta = 0;
+    const double halfH = 0.5 * h;  // the smoothing length of the codes that write h for h/2
+    if (deltaModel) {
+        viscosity = scene.viscosity.value_or(scene.physicalViscosity);
+        alpha = scene.artificialViscosity.value_or(kDefaultArtificialViscosity);
+        delta = scene.densityDiffusion.value_or(kDefaultDensityDiffusion);
+        say("viscosity: the fluid's own mu = " + fmt(viscosity) +
+            " Pa s (nu = " + fmt(viscosity / scene.restDensity) + " m^2/s" +
+            (scene.viscosity ? ", scene" : (scene.preset.empty() ? ", no fluid.preset" : "")) +
+            ") by Morris et al. 1997's operator (eta^2 = 0.01 (h/2)^2)");
+        say("artificial viscosity alpha = " + fmt(alpha) +
+            " between approaching particles only (Monaghan 1992): at most nu = alpha c (h/2) / "
+            "10 = " +
+            fmt(alpha * c * halfH / 10) + " m^2/s where particles close in, 0 elsewhere");
+        say("density diffusion delta = " + fmt(delta) + " (Molteni & Colagrossi 2009): D = delta " +
+            "c (h/2) = " + fmt(delta * c * halfH) +
+            " m^2/s on density differences, less their hydrostatic part (Fourtakas et al. 2019)");
+        say("kernel gradient divided by its lattice moment " + fmt(report.gradientMoment) +
+            ", so that on the seeded lattice a linear pressure, a linear flow and a quadratic flow "
+            "are differentiated exactly");
+        say("density by the continuity equation, starting hydrostatic in each fluid block "
+            "(rho = rho0 + rho0 |g| depth / c^2), rho0 in spheres");
+    } else if (scene.viscosity) {
+        const double artificial = scene.restDensity * 0.1 * h * c / 10.0;
         viscosity = *scene.viscosity;
         say("viscosity mu = " + fmt(viscosity) + " Pa s (scene)");
         if (viscosity < 0.05 * artificial) {
@@ -206,9 +240,10 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
                 " Pa s that damps this resolution's pressure waves: expect a noisy, ringing "
                 "density and possibly a blow-up; leave fluid.viscosity unset (the fluid's own "
                 "viscosity comes from fluid.preset) or use mu >= " +
-                fmt(artificial));
+                fmt(artificial) + ", or fluid.model \"delta-sph\"");
         }
     } else {
+        const double artificial = scene.restDensity * 0.1 * h * c / 10.0;
         viscosity = artificial + scene.physicalViscosity;
         say("viscosity mu = " + fmt(viscosity) + " Pa s = " + fmt(scene.physicalViscosity) +
             " (the fluid's) + " + fmt(artificial) +
@@ -217,8 +252,10 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
 
     // Time step: CFL, viscous diffusion and body-force limits; whole steps per output frame.
     const double nu = viscosity / scene.restDensity;
-    double dtCfl = 0.4 * h / (c + report.expectedSpeed);
-    double dtViscous = nu > 0 ? 0.125 * h * h / nu : 1e300;
+    const double cfl = deltaModel ? kDeltaSphCfl : 0.4;
+    double dtCfl = cfl * h / (c + report.expectedSpeed);
+    const double viscousLength = deltaModel ? halfH : h;
+    double dtViscous = nu > 0 ? 0.125 * viscousLength * viscousLength / nu : 1e300;
     double dtForce = g > 0 ? 0.25 * std::sqrt(h / g) : 1e300;
     double dtStable = std::min({dtCfl, dtViscous, dtForce});
     double dt = dtStable;
@@ -237,10 +274,11 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     dt = report.frameInterval / report.stepsPerFrame;
     report.frames = std::int64_t(std::floor(scene.duration * scene.frameRate + 1e-9));
     if (adaptive) {
-        say("time step adaptive, recomputed every step on the device: min(0.4 h / (c + max|v|), "
-            "0.25 sqrt(h / max|a|), 0.125 h^2 / nu = " +
-            fmt(dtViscous) + " s), the last step before each frame cut to land on it; " + "about " +
-            fmt(dt) + " s (" + std::to_string(report.stepsPerFrame) +
+        say("time step adaptive, recomputed every step on the device: min(" + fmt(cfl) +
+            " h / (c + max|v|), 0.25 sqrt(h / max|a|), 0.125 " + (deltaModel ? "(h/2)" : "h") +
+            "^2 / nu = " + fmt(dtViscous) +
+            " s), the last step before each frame cut to land on it; " + "about " + fmt(dt) +
+            " s (" + std::to_string(report.stepsPerFrame) +
             " per frame at the expected speed; CFL " + fmt(dtCfl) + ", force " + fmt(dtForce) +
             ")");
     } else {
@@ -295,7 +333,49 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             "unset (10x) or use >= " +
             fmt(3.0 * report.expectedSpeed));
     }
-    say("blow-up bound: speed > " + fmt(p.maxSpeed) + " m/s, NaN, or a particle outside the box");
+    p.maxDensityRatio = Real(1 + scene.maxCompression);
+    say("blow-up bound: speed > " + fmt(p.maxSpeed) + " m/s, density > " +
+        fmt(1 + scene.maxCompression) +
+        " rho0 (limits.maxCompression), two particles on one point, NaN, or a particle outside "
+        "the box");
+    p.model = deltaModel ? FluidModel::DeltaSph : FluidModel::Paper;
+    if (deltaModel) {
+        p.wendland = WendlandKernel::forRadius(h, report.gradientMoment);
+        p.dynamicViscosity = Real(viscosity);
+        p.viscosity = 0;  // eq. 5 is the paper model's
+        p.viscositySoftening = Real(0.01 * halfH * halfH);
+        p.artificialViscosity = Real(alpha * c * halfH);
+        p.densityDiffusion = Real(delta * c * halfH);
+        p.hydrostaticGradient = Vec3(scene.gravity * (scene.restDensity / (c * c)));
+        p.noSlip = scene.noSlip;
+        p.cflNumber = Real(cfl);
+    }
+
+    // The particles, on the host or left to the simulation's backend, starting at the density
+    // of a fluid at rest: hydrostatic down each block from its top (the continuity equation
+    // keeps it; the paper's model recomputes density from positions anyway).
+    for (SeedLattice& lattice : seeds.lattices) {
+        lattice.up = up;
+        lattice.densityAtTop = scene.restDensity;
+        lattice.top = -1e300;
+        if (lattice.shape < int(seeds.fluidBoxes.size())) {
+            const Box& b = seeds.fluidBoxes[std::size_t(lattice.shape)];
+            for (int k = 0; k < 8; ++k) {
+                const Vec3d corner((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y,
+                                   (k & 4) ? b.max.z : b.min.z);
+                lattice.top = std::max(lattice.top, dot(corner, up));
+            }
+            lattice.densityPerDepth = scene.restDensity * g / (c * c);
+        }
+    }
+    if (options.seedOnDevice && seeds.seedableOnDevice()) {
+        setup.seeder = std::make_shared<LatticeSeeder>(std::move(seeds));
+    } else {
+        forEachSeed(seeds, [&](const Vec3d& x, const Vec3d& v, double rho) {
+            setup.particles.push(x, v);
+            setup.particles.rho.back() = Real(rho);
+        });
+    }
 
     try {
         // Past the paper's 1024 cells per axis the dense table, or the sparse grid with 64-bit
@@ -311,8 +391,15 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         setup.obstacleSpheres.push_back({Vec3(s.center), Real(s.radius)});
     }
     if (scene.walls == WallModel::Particles) {
-        setup.boundary = buildBoundary(sampleBoundary(scene, d, h), scene.container, h,
-                                       scene.restDensity, mass / scene.restDensity);
+        const BoundaryKernel kernel = deltaModel ? BoundaryKernel::Wendland : BoundaryKernel::Poly6;
+        std::array<Vec3d, 6> faceVelocity{};
+        for (const MovingWall& moving : scene.movingWalls) {
+            faceVelocity[std::size_t(2 * moving.axis + moving.side)] = moving.velocity;
+        }
+        setup.boundary =
+            buildBoundary(sampleBoundary(scene, d, h, boundaryLayers(h, d, deltaModel)),
+                          scene.container, h, scene.restDensity, mass / scene.restDensity, kernel,
+                          scene.movingWalls.empty() ? nullptr : &faceVelocity);
         p.walls = WallKind::Particles;
         p.wallViscosity = Real(scene.wallFriction * viscosity);
         double psiMin = 1e300, psiMax = 0;
@@ -322,14 +409,24 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         }
         say("walls: " + std::to_string(setup.boundary.size()) +
             " boundary particles (Akinci et al. 2012) at spacing d in " +
-            std::to_string(boundaryLayers(h, d)) +
+            std::to_string(boundaryLayers(h, d, deltaModel)) +
             " layer(s) from d/2 behind each wall and obstacle surface; volume psi = rho0 / sum W "
             "over boundary neighbours, capped at a full neighbourhood's, " +
             fmt(psiMin / (scene.restDensity * d * d * d)) + " to " +
-            fmt(psiMax / (scene.restDensity * d * d * d)) +
-            " x rho0 d^3; they add to density and push by the fluid's own pressure" +
-            (scene.wallFriction > 0 ? "; friction mu = " + fmt(scene.wallFriction * viscosity)
-                                    : "; free slip (walls.friction 0)"));
+            fmt(psiMax / (scene.restDensity * d * d * d)) + " x rho0 d^3; " +
+            (deltaModel
+                 ? std::string("their pressure is the fluid particle's extrapolated "
+                               "hydrostatically, ") +
+                       (scene.noSlip ? "no-slip: the fluid's viscosity sees the wall velocity "
+                                       "mirrored through the wall (Morris et al. 1997)"
+                                     : "free slip (walls.slip)") +
+                       (scene.movingWalls.empty()
+                            ? ""
+                            : "; " + std::to_string(scene.movingWalls.size()) + " moving face(s)")
+                 : std::string("they add to density and push by the fluid's own pressure") +
+                       (scene.wallFriction > 0
+                            ? "; friction mu = " + fmt(scene.wallFriction * viscosity)
+                            : "; free slip (walls.friction 0)")));
     } else {
         p.wallWeight = wallWeightTable(h, d, mass, scene.restDensity);
         say("walls: the paper's simple collision response (restitution " +

@@ -28,7 +28,8 @@ struct SetupReport {
     double fluidHeight = 0;       // deepest fluid column along gravity, m
     double expectedSpeed = 0;     // largest speed expected from the fall height and initial speeds
     double speedOfSound = 0;      // sqrt(k), m/s
-    double latticeKernelSum = 0;  // sum of poly6 * d^3 over a full lattice (1 for an exact kernel)
+    double latticeKernelSum = 0;  // sum of W d^3 over a full lattice (1 for an exact kernel)
+    double gradientMoment = 1;    // delta-SPH: the kernel gradient's lattice moment it divides by
     int stepsPerFrame = 0;
     double frameInterval = 0;           // s
     std::int64_t frames = 0;            // frames after frame 0

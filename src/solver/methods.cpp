@@ -1,9 +1,8 @@
 // The registry's names and descriptions, for scene checks, --help and `weir info`.
-#include "solver/methods.h"
-
 #include <stdexcept>
 
 #include "core/exec_cpu.h"
+#include "solver/method_registry.h"
 
 namespace weir {
 

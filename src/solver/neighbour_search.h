@@ -61,18 +61,30 @@ class NeighbourSearch {
     // number of occupied cells back to the host every build.
     bool capturable() const { return mode_ != NeighbourMode::Grid; }
 
+    // What a reorder does besides moving the store's particles: nothing.
+    struct NothingElse {
+        WEIR_HD void operator()(Index, Index) const {}
+    };
+
     // Groups the store's particles by cell and reorders them into cell order (the dense table:
     // dropping what the store's dropper names), then runs once() on one thread of the backend:
-    // inside the build's first pass where there is one (a launch fewer per step).
-    template <class Once>
-    void update(Exec& exec, ParticleStore<Exec>& store, Once once) {
+    // inside the build's first pass where there is one (a launch fewer per step). also(from, to)
+    // runs in the pass that moves each particle, for a method's own per-particle data (brute
+    // force, which does not reorder: also(i, i), in a pass of its own).
+    template <class Once, class Also = NothingElse>
+    void update(Exec& exec, ParticleStore<Exec>& store, Once once, Also also = {}) {
         const Index n = store.count();
+        const auto placer = store.placer();
+        auto place = [=] WEIR_HD(Index from, Index to) {
+            placer(from, to);
+            also(from, to);
+        };
         if (auto* dense = std::get_if<DenseGrid<Exec>>(&structure_)) {
             exec.stageBegin("grid");
             // The counting sort places each particle's data as it finds its place: no separate
             // reorder pass.
             const auto dropper = store.dropper();
-            dense->build(exec, store.pos(), n, store.placer(), dropper, once);
+            dense->build(exec, store.pos(), n, place, dropper, once);
             store.commitReorder(dropper.active);
             exec.stageEnd("grid");
             checkKept(exec, *dense, store.count(), dropper.active);
@@ -81,8 +93,12 @@ class NeighbourSearch {
         if (auto* grid = std::get_if<NeighbourGrid<Exec>>(&structure_)) {
             exec.stageBegin("grid");
             grid->build(exec, store.pos(), n);
-            store.reorder(exec, grid->permutation());
+            const Index* order = grid->permutation();
+            exec.forEach(n, [=] WEIR_HD(Index k) { place(order[k], k); });
+            store.commitReorder(false);
             exec.stageEnd("grid");
+        } else if constexpr (!std::is_same_v<Also, NothingElse>) {
+            exec.forEach(n, [=] WEIR_HD(Index i) { also(i, i); });
         }
         exec.forEach(1, [=] WEIR_HD(Index) { once(); });
     }

@@ -66,7 +66,7 @@ class ParticleStore {
         std::vector<Index> id(static_cast<std::size_t>(n_));
         for (Index i = 0; i < n_; ++i) {
             pos[i] = {host.x[i], host.y[i], host.z[i], 0};
-            vel[i] = {host.vx[i], host.vy[i], host.vz[i], 0};
+            vel[i] = {host.vx[i], host.vy[i], host.vz[i], host.rho[i]};
             id[i] = ids.empty() ? i : ids[std::size_t(i)];
         }
         exec.upload(pos_, pos.data(), pos.size());
@@ -85,12 +85,13 @@ class ParticleStore {
         }
     }
 
-    // Sizes the reorder scratch to the particle count (when the neighbour search reorders).
+    // Sizes the scratch that reorders and fused passes write into to the particle count (the id
+    // scratch only when the neighbour search reorders).
     void fitScratch(bool reorders) {
         reorders_ = reorders;
+        sortedPos_.resize(std::size_t(n_));
+        sortedVel_.resize(std::size_t(n_));
         if (reorders) {
-            sortedPos_.resize(std::size_t(n_));
-            sortedVel_.resize(std::size_t(n_));
             sortedId_.resize(std::size_t(n_));
         }
     }
@@ -124,13 +125,6 @@ class ParticleStore {
                 sortedPos_.data(), sortedVel_.data(), sortedId_.data()};
     }
     Dropper dropper() const { return {pos_.data(), dropPending_ > 0 || heldGhosts_ > 0}; }
-
-    // Reorders by a permutation: order[k] is the particle that becomes the k-th (drops nothing).
-    void reorder(Exec& exec, const Index* order) {
-        const Placer place = placer();
-        exec.forEach(n_, [=] WEIR_HD(Index k) { place(order[k], k); });
-        commitReorder(false);
-    }
 
     // After the placer has run for every kept particle: the scratch becomes the particles.
     // dropped: whether the reorder dropped what dropper() named (those are then gone).

@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "core/check.h"
-#include "solver/methods.h"
+#include "solver/method_registry.h"
 #include "solver/neighbour_search.h"
 #include "solver/particle_store.h"
 #include "solver/pressure_solver.h"
@@ -87,7 +87,9 @@ class SphSimulation final : public Simulation {
     std::string deviceName() const override { return exec_.deviceName(); }
     std::size_t bytesHeld() const override {
         return store_.bytesHeld() + search_.bytesHeld() + method_->bytesHeld() +
-               boundaryStart_.size() * sizeof(Index) + boundaryPos_.size() * sizeof(Real4) +
+               boundaryStart_.size() * sizeof(Index) +
+               (boundaryPos_.size() + boundaryNormal_.size() + boundaryVelocity_.size()) *
+                   sizeof(Real4) +
                boundaryNear_.size();
     }
     Index occupiedCells() const override { return search_.occupiedCells(); }
@@ -142,6 +144,8 @@ class SphSimulation final : public Simulation {
     BoundaryView boundaryView() {
         BoundaryView walls = boundary_;
         walls.pos = boundaryPos_.data();
+        walls.normal = boundaryNormal_.data();
+        walls.velocity = boundaryVelocity_.size() > 0 ? boundaryVelocity_.data() : nullptr;
         walls.cells.cellBound = boundaryStart_.data();
         walls.near = boundaryNear_.data();
         return walls;
@@ -151,6 +155,8 @@ class SphSimulation final : public Simulation {
         const BoundaryParticles& walls = setup.boundary;
         if (walls.size() > 0) {
             exec_.upload(boundaryPos_, walls.pos.data(), walls.pos.size());
+            exec_.upload(boundaryNormal_, walls.normal.data(), walls.normal.size());
+            exec_.upload(boundaryVelocity_, walls.velocity.data(), walls.velocity.size());
             exec_.upload(boundaryStart_, walls.cellStart.data(), walls.cellStart.size());
             exec_.upload(boundaryNear_, walls.near.data(), walls.near.size());
             boundary_.cells.spec = walls.cellSpec();
@@ -171,7 +177,7 @@ class SphSimulation final : public Simulation {
     Buffer<ObstacleBox> boxes_;
     Buffer<ObstacleSphere> spheres_;
     BoundaryView boundary_;  // geometry of the static wall grid; pointers filled by boundaryView()
-    Buffer<Real4> boundaryPos_;
+    Buffer<Real4> boundaryPos_, boundaryNormal_, boundaryVelocity_;
     Buffer<Index> boundaryStart_;
     Buffer<unsigned char> boundaryNear_;
     StageTimes times_;

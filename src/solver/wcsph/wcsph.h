@@ -32,6 +32,10 @@ class Wcsph final : public PressureSolver<Exec> {
     // force and displacement as one pass (no acceleration array); the paper's grid and brute
     // force keep the paper's separate stages, so that Tables 1-3 reproduce stage for stage.
     void step(Context& s) override {
+        if (s.params.model == FluidModel::DeltaSph) {
+            deltaStep(s);
+            return;
+        }
         StepClock* clock = s.clock;
         const SphParams params = s.params;
         s.search.update(s.exec, s.store, [=] WEIR_HD() { beginStep(*clock, params); });
@@ -48,7 +52,15 @@ class Wcsph final : public PressureSolver<Exec> {
         s.exec.forEach(1, [=] WEIR_HD(Index) { endStep(*clock); });
     }
 
+    // delta-SPH: the density is part of the state (continuity equation): nothing to compute, but
+    // the pressure terms follow from it.
     void computeDensity(Context& s) override {
+        if (s.params.model == FluidModel::DeltaSph) {
+            fit(s);
+            s.search.update(
+                s.exec, s.store, [] WEIR_HD() {}, pressureTerms(s));
+            return;
+        }
         s.search.update(s.exec, s.store, [] WEIR_HD() {});
         fit(s);
         s.search.visit(s.store.pos(), s.store.count(),
@@ -57,6 +69,16 @@ class Wcsph final : public PressureSolver<Exec> {
 
     void runStage(Context& s, Stage stage) override {
         fit(s);
+        if (s.params.model == FluidModel::DeltaSph) {  // grid (with the pressure terms), one pass
+            if (stage == Stage::Grid) {
+                s.search.update(
+                    s.exec, s.store, [] WEIR_HD() {}, pressureTerms(s));
+            } else if (stage == Stage::Force) {
+                s.search.visit(s.store.pos(), s.store.count(),
+                               [&](const auto& nb) { interactAndMove(s, nb); });
+            }
+            return;
+        }
         switch (stage) {
             case Stage::Grid:
                 if (s.search.reorders()) {
@@ -89,6 +111,61 @@ class Wcsph final : public PressureSolver<Exec> {
     }
 
     // ---- The stages (public only because CUDA lambdas need a public enclosing function) ----
+
+    // delta-SPH (physics/delta_sph.h): the grid build computes every particle's pressure term as
+    // it moves it; one pass over the neighbours then gives forces and density rates and moves it.
+    void deltaStep(Context& s) {
+        StepClock* clock = s.clock;
+        const SphParams params = s.params;
+        fit(s);
+        s.search.update(
+            s.exec, s.store, [=] WEIR_HD() { beginStep(*clock, params); }, pressureTerms(s));
+        s.search.visit(s.store.pos(), s.store.count(),
+                       [&](const auto& nb) { interactAndMove(s, nb); });
+        s.exec.forEach(1, [=] WEIR_HD(Index) { endStep(*clock); });
+    }
+
+    // term[to] = p / rho^2 of the particle moved from `from` (its density in the velocity's w).
+    struct PressureTerms {
+        const Real4* vel;
+        Real* term;
+        SphParams params;
+        WEIR_HD void operator()(Index from, Index to) const {
+            term[to] = pressureTermOf(params, vel[from].w);
+        }
+    };
+    PressureTerms pressureTerms(Context& s) {
+        return {s.store.vel(), pressureTerm_.data(), s.params};
+    }
+
+    template <class Neighbours>
+    void interactAndMove(Context& s, const Neighbours& nb) {
+        s.exec.stageBegin("force");
+        if constexpr (Exec::isDevice && fusesForceAndDisplacement<Neighbours>()) {
+            if (teamSize(s) == 2) {
+                interactAndMovePass<2>(s, nb);
+            } else {
+                interactAndMovePass<1>(s, nb);
+            }
+        } else {
+            interactAndMovePass<1>(s, nb);
+        }
+        s.store.commitMotion();
+        s.exec.stageEnd("force");
+    }
+
+    template <int TeamSize, class Neighbours>
+    void interactAndMovePass(Context& s, const Neighbours& nb) {
+        const ParticleView pv = view(s);
+        const SphParams params = s.params;
+        const ObstacleView obstacles = s.obstacles;
+        FaultRecord* fault = s.fault;
+        StepClock* clock = s.clock;
+        Real4 *newPos = s.store.nextPos(), *newVel = s.store.nextVel();
+        s.exec.template forEachTeam<TeamSize>(pv.count, [=] WEIR_HD(Index i, Team<TeamSize> team) {
+            interactAndMoveAt(i, pv, nb, params, obstacles, fault, clock, newPos, newVel, team);
+        });
+    }
 
     // Density and pressure term of every particle; skipped in a no-op step when `inStep`.
     template <class Neighbours>
@@ -178,7 +255,7 @@ class Wcsph final : public PressureSolver<Exec> {
     // Sizes the method's arrays to the particle count (no allocation unless it grew).
     void fit(Context& s) {
         pressureTerm_.resize(std::size_t(s.store.count()));
-        if (s.search.mode() != NeighbourMode::Dense) {
+        if (s.search.mode() != NeighbourMode::Dense && s.params.model == FluidModel::Paper) {
             acc_.resize(std::size_t(s.store.count()));  // the dense path fuses force and motion
         }
     }

@@ -10,6 +10,7 @@
 #include "core/vec3.h"
 #include "physics/boundary.h"
 #include "physics/collision.h"
+#include "physics/delta_sph.h"
 #include "physics/density.h"
 #include "physics/eos.h"
 #include "physics/faults.h"
@@ -109,6 +110,7 @@ WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams
     }
     Vec3 x = pv.position(i), v = pv.velocity(i);
     advanceParticle(x, v, pv.acc[i].xyz(), i, params, obstacles, fault, clock);
+    checkDensity(pv.vel[i].w, false, i, params, fault, clock);
     pv.pos[i] = Real4::from(x);
     pv.vel[i] = Real4::from(v, pv.vel[i].w);  // keeps the step's density for output
 }
@@ -135,8 +137,92 @@ WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, co
     }
     Vec3 x = pv.position(i), v = v4.xyz();
     advanceParticle(x, v, a, i, params, obstacles, fault, clock);
+    checkDensity(v4.w, false, i, params, fault, clock);
     newPos[i] = Real4::from(x);
     newVel[i] = Real4::from(v, v4.w);
+}
+
+// ---- The delta-SPH model (FluidModel::DeltaSph, physics/delta_sph.h) ----
+
+// Walls of the simple model under delta-SPH: the container planes' share of the density changes
+// as the particle moves through the wall weight (d share / ds times the speed along the normal),
+// and they push by the particle's own pressure (physics/wall_weight.h).
+WEIR_HD inline void addWallWeightRates(const SphParams& p, const Vec3& x, const Vec3& v, Real rhoi,
+                                       Real pi, ParticleRates& rates) {
+    const Real step = p.wallWeight.invStep > Real(0) ? Real(1) / p.wallWeight.invStep : Real(0);
+    if (step == Real(0)) {
+        return;
+    }
+    for (int a = 0; a < 3; ++a) {
+        for (int side = 0; side < 2; ++side) {
+            const Real s = side == 0 ? x[a] - p.boxMin[a] : p.boxMax[a] - x[a];
+            Real share0, push0, share1, push1;
+            wallSample(p.wallWeight, s, share0, push0);
+            wallSample(p.wallWeight, s + step, share1, push1);
+            const Real slope = (share1 - share0) * p.wallWeight.invStep;  // d share / ds <= 0
+            const Real towards = side == 0 ? v[a] : -v[a];                // ds / dt
+            rates.densityRate += p.restDensity * slope * towards;
+        }
+    }
+    rates.acceleration += wallAcceleration(p.wallWeight, p.boxMin, p.boxMax, x, rhoi, pi);
+}
+
+// One pass of delta-SPH: i's pressure, viscous and artificial forces and its density's rate from
+// every neighbour and wall, then the move (semi-implicit Euler; the density by the continuity
+// equation), the collision safety net and the blow-up checks. The new state goes to separate
+// arrays, since other particles still read this one's in the same pass. A team (core/team.h)
+// shares the neighbours; its leader moves the particle.
+template <class Neighbours, int TeamSize = 1>
+WEIR_HD inline void interactAndMoveAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                      const SphParams& params, const ObstacleView& obstacles,
+                                      FaultRecord* fault, StepClock* clock, Real4* newPos,
+                                      Real4* newVel, Team<TeamSize> team = {}) {
+    const Real4 v4 = pv.vel[i];
+    if (clock->dt == Real(0) || isGhost(pv.pos[i])) {  // a no-op step, or a ghost: carried over
+        if (team.leader()) {
+            newPos[i] = pv.pos[i];
+            newVel[i] = v4;
+        }
+        return;
+    }
+    const Vec3 xi = pv.position(i), vi = v4.xyz();
+    const Real rhoi = v4.w, termI = pv.pressureTerm[i], h2 = params.wendland.h2;
+    ParticleRates rates;
+    bool collapsed = false;
+    nb.forEachCandidate(
+        i,
+        [&](Index j) {
+            const Vec3 rVec = xi - pv.position(j);
+            const Real r2 = lengthSquared(rVec);
+            if (r2 < h2 && r2 > Real(0)) {
+                const Real4 vj = pv.vel[j];
+                addFluidNeighbour(params, rVec, r2, rhoi, vj.w, termI, pv.pressureTerm[j], vi,
+                                  vj.xyz(), rates);
+            } else if (r2 == Real(0) && j != i) {
+                collapsed = true;
+            }
+        },
+        team);
+    rates.acceleration = Vec3(team.sum(rates.acceleration.x), team.sum(rates.acceleration.y),
+                              team.sum(rates.acceleration.z));
+    rates.densityRate = team.sum(rates.densityRate);
+    collapsed = team.sum(collapsed ? Real(1) : Real(0)) > Real(0);
+    if (!team.leader()) {
+        return;
+    }
+    const Real pi = pressureFromDensity(params, rhoi);
+    if (params.walls == WallKind::Particles) {
+        addBoundaryRates(pv.boundary, params, xi, vi, rhoi, pi, termI, rates);
+    } else {
+        addWallWeightRates(params, xi, vi, rhoi, pi, rates);
+    }
+    const Vec3 a = rates.acceleration + params.gravity;
+    Vec3 x = xi, v = vi;
+    advanceParticle(x, v, a, i, params, obstacles, fault, clock);
+    const Real rho = rhoi + clock->dt * rates.densityRate;
+    checkDensity(rho, collapsed, i, params, fault, clock);
+    newPos[i] = Real4::from(x);
+    newVel[i] = Real4::from(v, rho);
 }
 
 }  // namespace weir
