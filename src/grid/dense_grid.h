@@ -43,6 +43,16 @@ struct DenseGridNeighbours {
             }
         });
     }
+
+    // Calls f(j) for every particle j that can lie within h of the point p.
+    template <class F>
+    WEIR_HD void forEachNearPoint(const Vec3& p, F&& f) const {
+        cells.forEachRun(p, reach, h2, [&](Index first, Index end) {
+            for (Index j = first; j < end; ++j) {
+                f(j);
+            }
+        });
+    }
 };
 
 // Cells per smoothing radius of the dense table for a grid of h-wide cells and n particles: 2 (h/2

@@ -12,6 +12,7 @@
 
 #include "core/config.h"
 #include "core/team.h"
+#include "core/vec3.h"
 #include "grid/cell_id.h"
 #include "grid/cell_sort.h"
 
@@ -25,13 +26,68 @@ WEIR_HD constexpr int neighbourSlot(int dx, int dy, int dz) {
     return ((dy + 1) * 3 + (dz + 1)) * 3 + (dx + 1);
 }
 
-// What the density and force stages need of the grid, passed by value to kernels. It holds no
-// cell ids: the stages are the same whichever width the grid uses.
+// Lower bound of key in sorted keys[0, n).
+template <class Key>
+WEIR_HD inline Index lowerBound(const Key* keys, Index n, Key key) {
+    Index lo = 0, hi = n;
+    while (lo < hi) {
+        Index mid = lo + (hi - lo) / 2;
+        if (keys[mid] < key) {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo;
+}
+
+// What the density and force stages need of the grid, passed by value to kernels. The stages
+// are the same whichever width the grid's cell ids have; only queries at a point (not at a
+// particle) look ids up, in whichever table the grid has.
 struct GridNeighbours {
     const Index* particleCell;    // cell-table index of each (sorted) particle
     const Index* neighbourTable;  // kNeighbourCells entries per cell, -1 where empty
     const Index* cellStart;       // first particle of each cell
     const Index* cellCount;       // particles in each cell
+    const CellKey* narrowKeys;    // the occupied cells' ids (32-bit grids), or
+    const WideCellKey* wideKeys;  // ... (64-bit grids)
+    Index cells;                  // occupied cells
+    GridSpec spec;
+
+    // Calls f(j) for every particle j in the 27 cells around the cell of the point p (clamped
+    // into the grid), each found by a binary search of its id.
+    template <class F>
+    WEIR_HD void forEachNearPoint(const Vec3& p, F&& f) const {
+        const CellCoord c = spec.cellOf(p.x, p.y, p.z);
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dz = -1; dz <= 1; ++dz) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int x = c.x + dx, y = c.y + dy, z = c.z + dz;
+                    if (x < 0 || y < 0 || z < 0 || x >= spec.dims[0] || y >= spec.dims[1] ||
+                        z >= spec.dims[2]) {
+                        continue;
+                    }
+                    Index at;
+                    bool found;
+                    if (narrowKeys != nullptr) {
+                        const CellKey key = encodeCell<CellKey>(x, y, z);
+                        at = lowerBound(narrowKeys, cells, key);
+                        found = at < cells && narrowKeys[at] == key;
+                    } else {
+                        const WideCellKey key = encodeCell<WideCellKey>(x, y, z);
+                        at = lowerBound(wideKeys, cells, key);
+                        found = at < cells && wideKeys[at] == key;
+                    }
+                    if (found) {
+                        const Index end = cellStart[at] + cellCount[at];
+                        for (Index j = cellStart[at]; j < end; ++j) {
+                            f(j);
+                        }
+                    }
+                }
+            }
+        }
+    }
 
     // Calls f(j) for every particle j in the 27 cells around particle i, i itself included.
     // The cells of one X row are consecutive in the sorted order, so each row is one run.
@@ -64,22 +120,13 @@ struct BruteNeighbours {
             f(j);
         }
     }
-};
-
-// Lower bound of key in sorted keys[0, n).
-template <class Key>
-WEIR_HD inline Index lowerBound(const Key* keys, Index n, Key key) {
-    Index lo = 0, hi = n;
-    while (lo < hi) {
-        Index mid = lo + (hi - lo) / 2;
-        if (keys[mid] < key) {
-            lo = mid + 1;
-        } else {
-            hi = mid;
+    template <class F>
+    WEIR_HD void forEachNearPoint(const Vec3&, F&& f) const {
+        for (Index j = 0; j < count; ++j) {
+            f(j);
         }
     }
-    return lo;
-}
+};
 
 // The grid with cell ids of type Key: CellKey (paper §6.2) or WideCellKey.
 template <class Exec, class Key>
@@ -180,7 +227,20 @@ class KeyedNeighbourGrid {
     }
 
     GridNeighbours view() const {
-        return {particleCell_.data(), neighbourTable_.data(), cellStart_.data(), cellCount_.data()};
+        GridNeighbours v{particleCell_.data(),
+                         neighbourTable_.data(),
+                         cellStart_.data(),
+                         cellCount_.data(),
+                         nullptr,
+                         nullptr,
+                         numCells_,
+                         spec_};
+        if constexpr (sizeof(Key) == sizeof(CellKey)) {
+            v.narrowKeys = cellKeys_.data();
+        } else {
+            v.wideKeys = cellKeys_.data();
+        }
+        return v;
     }
     const Index* permutation() const { return sort_.permutation(); }
     const GridSpec& spec() const { return spec_; }

@@ -24,9 +24,11 @@
 namespace weir {
 
 struct BoundaryView {
-    const Real4* pos = nullptr;           // x, y, z, psi; in cell order
-    const Real4* normal = nullptr;        // unit normal into the fluid, depth behind the surface
-    const Real4* velocity = nullptr;      // the wall's velocity at each (null: walls at rest)
+    const Real4* pos = nullptr;       // x, y, z, psi; in cell order
+    const Real4* velocity = nullptr;  // the wall's velocity at each (null: walls at rest)
+    // delta-SPH: each one's velocity and p / rho^2 as the fluid near it extrapolates them this
+    // step (Adami et al. 2012; physics/delta_sph.h), by the method; null otherwise.
+    const Real4* state = nullptr;
     const unsigned char* near = nullptr;  // per cell: a boundary particle in its 27 cells
     CellTableView cells{};                // h-wide cells (grid/cell_walk.h)
     Index count = 0;
@@ -86,7 +88,6 @@ WEIR_HD inline Vec3 boundaryAcceleration(const BoundaryView& bv, const KernelCoe
 // The boundary particles and their static grid, as built on the host (scene/boundary.cpp).
 struct BoundaryParticles {
     std::vector<Real4> pos;       // x, y, z, psi; in cell order
-    std::vector<Real4> normal;    // unit normal into the fluid, depth behind the wall surface
     std::vector<Real4> velocity;  // the wall's velocity at each; empty: every wall at rest
     std::vector<Index> cellStart;
     std::vector<unsigned char> near;

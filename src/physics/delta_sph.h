@@ -4,7 +4,7 @@
 //
 //   pressure     a_i -= m_j (p_i / rho_i^2 + p_j / rho_j^2) grad W_ij          (symmetric form)
 //   continuity   drho_i/dt += m_j (v_i - v_j) . grad W_ij
-//   diffusion    drho_i/dt += delta c h 2 (rho_j - rho_i - rho^H_ji) (-g_ij) m_j / rho_j
+//   diffusion    drho_i/dt -= delta c h 2 (rho_j - rho_i - rho^H_ji) g_ij m_j / rho_j
 //                (Molteni & Colagrossi 2009, with grad W = g r_vec; Fourtakas et al. 2019 leave
 //                the hydrostatic part rho^H_ji = rho0 g . (x_j - x_i) / c^2 alone, so a tank at
 //                rest keeps its hydrostatic density)
@@ -13,13 +13,14 @@
 //   artificial   a_i -= m_j Pi_ij grad W_ij, Pi_ij = -alpha c (h/2) (v_ij . r) / ((r^2 + eta^2)
 //                rho_ij) for approaching pairs only (Monaghan 1992, alpha small)
 //
-// Walls are boundary particles b (physics/boundary.h) that stand for the fluid beyond them:
-// their pressure is the fluid particle's extrapolated hydrostatically to b,
-// p_b = p_i + rho_i g . (x_b - x_i) (so the layer next to a wall feels the pressure the missing
-// fluid would exert, and is not squeezed to twice hydrostatic), their velocity the wall's, and at
-// no-slip walls the viscous term sees the velocity mirrored through the wall surface,
-// v_i - v_b* = min(1.5, 1 + d_b / d_i) (v_i - v_wall) (Morris et al. 1997: d_b, d_i the distances
-// of b and i from the wall surface).
+// Walls are boundary particles b (physics/boundary.h) that stand for the fluid beyond them
+// (Adami, Hu & Adams 2012): each step every one takes the pressure and velocity that the fluid
+// near it extrapolates to its place (extrapolateToWall), and acts on the fluid as a fluid
+// particle would, so the layer next to a wall feels the pressure the missing fluid would exert
+// (not squeezed to twice hydrostatic) and, at no-slip walls, its shear. Extrapolating from the one
+// fluid particle of the pair instead (p_b = p_i + rho_i g . (x_b - x_i)) pushes it by twice its own
+// pressure, more than its density's share of the wall (Akinci's term) returns: measured, a tank at
+// rest gained energy until it churned at 0.2 m/s.
 #pragma once
 
 #include <cmath>
@@ -27,26 +28,21 @@
 #include "core/config.h"
 #include "core/vec3.h"
 #include "physics/boundary.h"
+#include "physics/eos.h"
 #include "physics/kernels.h"
 #include "physics/sph_params.h"
 
 namespace weir {
 
-// One particle's rates, summed over its neighbours.
-struct ParticleRates {
-    Vec3 acceleration;
-    Real densityRate = 0;
-};
-
-// Fluid neighbour j of fluid particle i: rVec = x_i - x_j, 0 < r2 < h^2; termI, termJ: p / rho^2.
-WEIR_HD inline void addFluidNeighbour(const SphParams& p, const Vec3& rVec, Real r2, Real rhoi,
-                                      Real rhoj, Real termI, Real termJ, const Vec3& vi,
-                                      const Vec3& vj, ParticleRates& rates) {
+// Fluid neighbour j of fluid particle i, momentum: rVec = x_i - x_j, 0 < r2 < h^2; termI, termJ:
+// p / rho^2. Adds to i's acceleration.
+WEIR_HD inline void addFluidMomentum(const SphParams& p, const Vec3& rVec, Real r2, Real rhoi,
+                                     Real rhoj, Real termI, Real termJ, const Vec3& vi,
+                                     const Vec3& vj, Vec3& acceleration) {
     const Real r = r2 * reciprocalSqrt(r2);
     const Real g = p.wendland.gradientFactor(r);  // grad W = g rVec, g < 0
     const Vec3 vij = vi - vj;
     const Real vDotR = dot(vij, rVec);
-    const Real volumeJ = p.mass * reciprocal(rhoj);
     const Real softened = reciprocal(r2 + p.viscositySoftening);
     // Pressure, then viscosity: the fluid's own (Morris) and, approaching, the artificial one.
     Real alongR = -p.mass * (termI + termJ) * g;
@@ -55,58 +51,99 @@ WEIR_HD inline void addFluidNeighbour(const SphParams& p, const Vec3& rVec, Real
                   reciprocal(rhoi + rhoj) * g;
     }
     const Real viscous =
-        Real(2) * p.dynamicViscosity * volumeJ * reciprocal(rhoi) * g * r2 * softened;
-    rates.acceleration += rVec * alongR + vij * viscous;
-    // Continuity and density diffusion.
-    const Real hydrostatic = -dot(p.hydrostaticGradient, rVec);  // rho^H_j - rho^H_i
-    rates.densityRate += p.mass * g * vDotR -
-                         p.densityDiffusion * Real(2) * (rhoj - rhoi - hydrostatic) * g * volumeJ;
+        Real(2) * p.dynamicViscosity * p.mass * reciprocal(rhoi * rhoj) * g * r2 * softened;
+    acceleration += rVec * alongR + vij * viscous;
 }
 
-// Boundary particle b of fluid particle i: rVec = x_i - x_b, 0 < r2 < h^2; psi the mass it stands
-// for, normal (into the fluid) and depth (its distance behind the wall surface), wall velocity vb.
-WEIR_HD inline void addBoundaryNeighbour(const SphParams& p, const Vec3& rVec, Real r2, Real rhoi,
-                                         Real pi, Real termI, const Vec3& vi, Real psi,
-                                         const Vec3& normal, Real depth, const Vec3& vb,
-                                         ParticleRates& rates) {
+// Fluid neighbour j of fluid particle i, continuity and density diffusion: the rate of i's
+// density, with the velocities of the step's end (see the method's two passes).
+WEIR_HD inline Real fluidDensityRate(const SphParams& p, const Vec3& rVec, Real r2, Real rhoi,
+                                     Real rhoj, const Vec3& vi, const Vec3& vj) {
     const Real r = r2 * reciprocalSqrt(r2);
     const Real g = p.wendland.gradientFactor(r);
-    const Vec3 vib = vi - vb;
-    // The pressure the fluid would have at b, hydrostatically from i's (never negative).
-    Real pb = pi - rhoi * dot(p.gravity, rVec);
-    pb = pb > Real(0) ? pb : Real(0);
-    const Real invRho2 = reciprocal(rhoi * rhoi);
-    Real alongR = -psi * (termI + pb * invRho2) * g;
-    Vec3 viscousVelocity;
-    if (p.noSlip) {
-        const Real di = dot(rVec, normal) - depth;  // i's distance from the wall surface
-        Real factor = di > Real(0) ? Real(1) + depth * reciprocal(di) : p.maxWallVelocityFactor;
-        factor = factor < p.maxWallVelocityFactor ? factor : p.maxWallVelocityFactor;
-        const Real softened = reciprocal(r2 + p.viscositySoftening);
-        viscousVelocity = vib * (Real(2) * p.dynamicViscosity * psi * p.invRestDensity *
-                                 reciprocal(rhoi) * g * r2 * softened * factor);
-        const Real vDotR = dot(vib, rVec);
-        if (vDotR < Real(0)) {
-            alongR += p.artificialViscosity * vDotR * softened * psi * reciprocal(rhoi) * g;
-        }
-    }
-    rates.acceleration += rVec * alongR + viscousVelocity;
-    rates.densityRate += psi * g * dot(vib, rVec);
+    const Real hydrostatic = -dot(p.hydrostaticGradient, rVec);  // rho^H_j - rho^H_i
+    return p.mass * g *
+           (dot(vi - vj, rVec) -
+            p.densityDiffusion * Real(2) * (rhoj - rhoi - hydrostatic) * reciprocal(rhoj));
 }
 
-// What the boundary particles near fluid particle i add to its rates.
-WEIR_HD inline void addBoundaryRates(const BoundaryView& bv, const SphParams& p, const Vec3& xi,
-                                     const Vec3& vi, Real rhoi, Real pi, Real termI,
-                                     ParticleRates& rates) {
+// A boundary particle's state this step (Adami, Hu & Adams 2012), from the fluid near it:
+// pressure p_b = (sum_f p_f W_bf + g . sum_f rho_f (x_b - x_f) W_bf) / sum_f W_bf, the fluid's
+// pressure extrapolated to b with the hydrostatic part of its gradient, never negative (walls do
+// not pull); velocity for the viscous term 2 v_wall - (sum_f v_f W_bf) / sum_f W_bf (no-slip:
+// the fluid's velocity mirrored through the wall) or v_wall (free slip). Returns (v_b, p_b /
+// rho_b^2) with rho_b from p_b by the equation of state. Neighbours: the fluid's neighbour view,
+// queried at b's position; pressureTerm: each fluid particle's p / rho^2.
+template <class Neighbours>
+WEIR_HD inline Real4 extrapolateToWall(const SphParams& p, const Neighbours& nb, const Vec3& xb,
+                                       const Vec3& vWall, const Real4* pos, const Real4* vel,
+                                       const Real* pressureTerm) {
+    Real sumW = 0, sumP = 0;
+    Vec3 sumRhoR, sumV;
     const Real h2 = p.wendland.h2;
-    bv.forEachNear(xi, [&](Index b) {
-        const Real4 pb = bv.pos[b];
-        const Vec3 rVec = xi - pb.xyz();
+    nb.forEachNearPoint(xb, [&](Index f) {
+        const Vec3 r = xb - pos[f].xyz();
+        const Real r2 = lengthSquared(r);
+        if (r2 < h2) {
+            const Real w = p.wendland.value(r2 * reciprocalSqrt(r2 > Real(0) ? r2 : h2));
+            const Real4 vf = vel[f];
+            sumW += w;
+            sumP += pressureTerm[f] * vf.w * vf.w * w;
+            sumRhoR += r * (vf.w * w);
+            sumV += vf.xyz() * w;
+        }
+    });
+    if (!(sumW > Real(0))) {
+        return Real4::from(vWall, Real(0));
+    }
+    const Real invW = Real(1) / sumW;
+    Real pb = (sumP + dot(p.gravity, sumRhoR)) * invW;
+    pb = pb > Real(0) ? pb : Real(0);
+    const Real rhob = densityFromPressure(p, pb);
+    const Vec3 vb = p.noSlip ? vWall * Real(2) - sumV * invW : vWall;
+    return Real4::from(vb, pb / (rhob * rhob));
+}
+
+// Boundary particle b of fluid particle i, momentum: rVec = x_i - x_b, 0 < r2 < h^2; psi the
+// mass it stands for; state its extrapolated velocity and p / rho^2 (extrapolateToWall).
+WEIR_HD inline void addBoundaryMomentum(const SphParams& p, const Vec3& rVec, Real r2, Real rhoi,
+                                        Real termI, const Vec3& vi, Real psi, const Real4& state,
+                                        Vec3& acceleration) {
+    const Real r = r2 * reciprocalSqrt(r2);
+    const Real g = p.wendland.gradientFactor(r);
+    Real alongR = -psi * (termI + state.w) * g;
+    if (p.noSlip) {
+        const Vec3 vib = vi - state.xyz();
+        const Real softened = reciprocal(r2 + p.viscositySoftening);
+        acceleration += vib * (Real(2) * p.dynamicViscosity * psi * p.invRestDensity *
+                               reciprocal(rhoi) * g * r2 * softened);
+        const Real vDotR = dot(vib, rVec);
+        if (vDotR < Real(0)) {
+            alongR += p.artificialViscosity * vDotR * softened * Real(2) * psi *
+                      reciprocal(rhoi + p.restDensity) * g;
+        }
+    }
+    acceleration += rVec * alongR;
+}
+
+// Boundary particle b of fluid particle i, continuity: its share of i's density rate, with the
+// wall's own velocity (the fluid may not flow through it).
+WEIR_HD inline Real boundaryDensityRate(const SphParams& p, const Vec3& rVec, Real r2,
+                                        const Vec3& vi, Real psi, const Vec3& vWall) {
+    const Real r = r2 * reciprocalSqrt(r2);
+    return psi * p.wendland.gradientFactor(r) * dot(vi - vWall, rVec);
+}
+
+// Calls f(b, rVec, r2) for the boundary particles within h of x.
+template <class F>
+WEIR_HD inline void forEachBoundaryNeighbour(const BoundaryView& bv, const SphParams& p,
+                                             const Vec3& x, F&& f) {
+    const Real h2 = p.wendland.h2;
+    bv.forEachNear(x, [&](Index b) {
+        const Vec3 rVec = x - bv.pos[b].xyz();
         const Real r2 = lengthSquared(rVec);
         if (r2 < h2 && r2 > Real(0)) {
-            const Real4 n = bv.normal[b];
-            const Vec3 vb = bv.velocity != nullptr ? bv.velocity[b].xyz() : Vec3();
-            addBoundaryNeighbour(p, rVec, r2, rhoi, pi, termI, vi, pb.w, n.xyz(), n.w, vb, rates);
+            f(b, rVec, r2);
         }
     });
 }

@@ -5,6 +5,8 @@
 // negativePressureScale: 0 clamps it (the default), 1 keeps it as the equation gives it.
 #pragma once
 
+#include <cmath>
+
 #include "physics/sph_params.h"
 
 namespace weir {
@@ -19,6 +21,14 @@ WEIR_HD inline Real pressureFromDensity(const SphParams& params, Real rho) {
         p = params.stiffness * (rho - params.restDensity);
     }
     return p < Real(0) ? p * params.negativePressureScale : p;
+}
+
+// The density at which the equation of state gives pressure p (p >= 0; inverse of the above).
+WEIR_HD inline Real densityFromPressure(const SphParams& params, Real p) {
+    if (params.eos == EosKind::Tait) {
+        return params.restDensity * std::pow(Real(1) + p / params.taitB, Real(1) / Real(7));
+    }
+    return params.restDensity + p / params.stiffness;
 }
 
 }  // namespace weir

@@ -59,16 +59,15 @@ struct SphParams {
 
     // The delta-SPH model (FluidModel::DeltaSph; physics/delta_sph.h).
     FluidModel model = FluidModel::Paper;
-    WendlandKernel wendland;           // with the lattice-moment correction of its gradient
-    Real dynamicViscosity = 0;         // mu, the fluid's own, Pa s (Morris et al. 1997)
-    Real viscositySoftening = 0;       // eta^2 = 0.01 (h/2)^2 of Morris's operator, m^2
-    Real artificialViscosity = 0;      // alpha c (h/2), m^2/s (Monaghan 1992; approaching pairs)
-    Real densityDiffusion = 0;         // delta c h, m^2/s (Molteni & Colagrossi 2009)
-    Vec3 hydrostaticGradient;          // rho0 g / c^2, kg/m^4: the hydrostatic part that density
-                                       // diffusion leaves alone (Fourtakas et al. 2019)
-    bool noSlip = false;               // walls: no-slip (true) or free slip
-    Real maxWallVelocityFactor = 1.5;  // Morris's cap on 1 + d_b / d_i at no-slip walls
-    Real maxDensityRatio = 0;          // blow-up bound on rho / rho0 (0: none)
+    WendlandKernel wendland;       // with the lattice-moment correction of its gradient
+    Real dynamicViscosity = 0;     // mu, the fluid's own, Pa s (Morris et al. 1997)
+    Real viscositySoftening = 0;   // eta^2 = 0.01 (h/2)^2 of Morris's operator, m^2
+    Real artificialViscosity = 0;  // alpha c (h/2), m^2/s (Monaghan 1992; approaching pairs)
+    Real densityDiffusion = 0;     // delta c h, m^2/s (Molteni & Colagrossi 2009)
+    Vec3 hydrostaticGradient;      // rho0 g / c^2, kg/m^4: the hydrostatic part that density
+                                   // diffusion leaves alone (Fourtakas et al. 2019)
+    bool noSlip = false;           // walls: no-slip (true) or free slip
+    Real maxDensityRatio = 0;      // blow-up bound on rho / rho0 (0: none)
 };
 
 }  // namespace weir

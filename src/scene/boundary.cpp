@@ -17,17 +17,13 @@ Vec3d cross(const Vec3d& a, const Vec3d& b) {
 }
 Vec3d normalize(const Vec3d& v) { return v / length(v); }
 
-// Collects points with their wall normal (into the fluid), depth behind the wall surface and
-// container face (-1: an obstacle), dropping any closer than minDistance to one already kept
-// (spatial hash).
+// Collects points with their container face (-1: an obstacle), dropping any closer than
+// minDistance to one already kept (spatial hash).
 class PointSet {
    public:
     explicit PointSet(double minDistance) : min_(minDistance), cell_(minDistance) {}
 
-    // The depth of the points added next.
-    void setDepth(double depth) { depth_ = depth; }
-
-    void add(const Vec3d& p, const Vec3d& normal, int face = -1) {
+    void add(const Vec3d& p, int face = -1) {
         const long cx = cellOf(p.x), cy = cellOf(p.y), cz = cellOf(p.z);
         for (long dx = -1; dx <= 1; ++dx) {
             for (long dy = -1; dy <= 1; ++dy) {
@@ -46,8 +42,6 @@ class PointSet {
         }
         cells_[key(cx, cy, cz)].push_back(samples_.points.size());
         samples_.points.push_back(p);
-        samples_.normals.push_back(normal);
-        samples_.depths.push_back(depth_);
         samples_.faces.push_back(face);
     }
     BoundarySamples take() { return std::move(samples_); }
@@ -59,15 +53,12 @@ class PointSet {
                std::uint64_t(z & 0x1FFFFF);
     }
     double min_, cell_;
-    double depth_ = 0;
     BoundarySamples samples_;
     std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
 };
 
-// The surface of box [lo, hi] on a lattice of spacing close to d (each axis divided evenly), each
-// point with its face's normal into the fluid (the mean of its faces' at edges and corners):
-// inward for the container (`container`, which also names each point's first face 0..5 as
-// -x, +x, -y, +y, -z, +z), outward for an obstacle.
+// The surface of box [lo, hi] on a lattice of spacing close to d (each axis divided evenly); for
+// the container (`container`) each point names its first face, 0..5 as -x, +x, -y, +y, -z, +z.
 void sampleBoxSurface(const Vec3d& lo, const Vec3d& hi, double d, bool container, PointSet& out) {
     long n[3];
     double step[3];
@@ -82,18 +73,15 @@ void sampleBoxSurface(const Vec3d& lo, const Vec3d& hi, double d, bool container
             for (long i = 0; i <= n[0]; ++i) {
                 if (faceYZ || i == 0 || i == n[0]) {
                     const long at[3] = {i, j, k};
-                    Vec3d normal;
                     int face = -1;
-                    for (int a = 0; a < 3; ++a) {
+                    for (int a = 0; a < 3 && container && face < 0; ++a) {
                         if (at[a] == 0 || at[a] == n[a]) {
-                            const int side = at[a] == 0 ? 0 : 1;
-                            normal[a] = (side == 0) == container ? 1.0 : -1.0;
-                            face = face < 0 ? 2 * a + side : face;
+                            face = 2 * a + (at[a] == 0 ? 0 : 1);
                         }
                     }
                     out.add({lo.x + double(i) * step[0], lo.y + double(j) * step[1],
                              lo.z + double(k) * step[2]},
-                            normalize(normal), container ? face : -1);
+                            face);
                 } else {
                     i = n[0] - 1;  // skip the interior of this row
                 }
@@ -110,8 +98,7 @@ void sampleSphereSurface(const Vec3d& centre, double radius, double d, PointSet&
         const double y = 1.0 - 2.0 * (double(k) + 0.5) / double(count);
         const double ring = std::sqrt(std::max(0.0, 1.0 - y * y));
         const double phi = golden * double(k);
-        const Vec3d direction(ring * std::cos(phi), y, ring * std::sin(phi));
-        out.add(centre + direction * radius, direction);
+        out.add(centre + Vec3d(ring * std::cos(phi), y, ring * std::sin(phi)) * radius);
     }
 }
 
@@ -130,9 +117,8 @@ void sampleTriangle(const Vec3d& a, const Vec3d& b, const Vec3d& c, double d, do
     const long n = std::max(1L, long(std::ceil(longest / d)));
     for (long i = 0; i <= n; ++i) {
         for (long j = 0; i + j <= n; ++j) {
-            out.add(
-                a + e1 * (double(i) / double(n)) + e2 * (double(j) / double(n)) + normal * offset,
-                normal);
+            out.add(a + e1 * (double(i) / double(n)) + e2 * (double(j) / double(n)) +
+                    normal * offset);
         }
     }
 }
@@ -183,7 +169,6 @@ BoundarySamples sampleBoundary(const Scene& scene, double d, double, int layers)
     PointSet points(0.5 * d);
     for (int layer = 0; layer < layers; ++layer) {
         const double depth = (layer + 0.5) * d;  // behind the surface
-        points.setDepth(depth);
         const Vec3d out(depth, depth, depth);
         sampleBoxSurface(scene.container.min - out, scene.container.max + out, d, true, points);
         for (const Box& box : scene.obstacleBoxes) {
@@ -213,8 +198,6 @@ BoundaryParticles buildBoundary(const std::vector<Vec3d>& points, const Box& con
                                 double restDensity, double fullVolume) {
     BoundarySamples samples;
     samples.points = points;
-    samples.normals.assign(points.size(), Vec3d());
-    samples.depths.assign(points.size(), 0.0);
     samples.faces.assign(points.size(), -1);
     return buildBoundary(samples, container, h, restDensity, fullVolume, BoundaryKernel::Poly6);
 }
@@ -262,7 +245,6 @@ BoundaryParticles buildBoundary(const BoundarySamples& samples, const Box& conta
         sorted[i] = points[order[i]];
     }
     out.pos.resize(points.size());
-    out.normal.resize(points.size());
     out.velocity.resize(faceVelocity != nullptr ? points.size() : 0);
     out.near.assign(cells, 0);
     for (std::size_t i = 0; i < sorted.size(); ++i) {
@@ -292,11 +274,8 @@ BoundaryParticles buildBoundary(const BoundarySamples& samples, const Box& conta
         // Akinci's psi, capped at a full neighbourhood's (see scene/boundary.h).
         const double psi = std::min(restDensity / sum, restDensity * fullVolume);
         out.pos[i] = {Real(p.x), Real(p.y), Real(p.z), Real(psi)};
-        const std::size_t from = order[i];
-        const Vec3d& n = samples.normals[from];
-        out.normal[i] = {Real(n.x), Real(n.y), Real(n.z), Real(samples.depths[from])};
         if (faceVelocity != nullptr) {
-            const int face = samples.faces[from];
+            const int face = samples.faces[order[i]];
             const Vec3d v = face >= 0 ? (*faceVelocity)[std::size_t(face)] : Vec3d();
             out.velocity[i] = {Real(v.x), Real(v.y), Real(v.z), 0};
         }

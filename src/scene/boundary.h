@@ -19,15 +19,13 @@ std::vector<Vec3d> sampleBoundary(const Scene& scene, double d, double h);
 // Layers of boundary particles for smoothing radius h and spacing d: as many as the kernel
 // reaches past the first (1 at h = 2d, 2 at h = 3d), or with fullSupport every layer a fluid
 // particle closer than d/2 to the wall can reach (2 at h = 2d: the delta-SPH model's walls
-// extrapolate the fluid's pressure into them and need the whole support).
+// stand for the fluid beyond them, Adami et al. 2012, and fill the whole support).
 int boundaryLayers(double h, double d, bool fullSupport = false);
 
-// The sampled points with what each stands for: its wall's normal into the fluid (zero where
-// unknown), its depth behind the wall surface and its container face (0..5 as -x, +x, -y, +y, -z,
-// +z; -1: an obstacle).
+// The sampled points with the container face each stands for (0..5 as -x, +x, -y, +y, -z, +z;
+// -1: an obstacle).
 struct BoundarySamples {
-    std::vector<Vec3d> points, normals;
-    std::vector<double> depths;
+    std::vector<Vec3d> points;
     std::vector<int> faces;
     std::size_t size() const { return points.size(); }
 };
@@ -46,7 +44,7 @@ enum class BoundaryKernel { Poly6, Wendland };
 // container and one cell of margin.
 BoundaryParticles buildBoundary(const std::vector<Vec3d>& points, const Box& container, double h,
                                 double restDensity, double fullVolume);
-// The same from samples with their normals and depths, by `kernel`; faceVelocity: the velocity
+// The same from samples, by `kernel`; faceVelocity: the velocity
 // of each container face's particles (null: every wall at rest).
 BoundaryParticles buildBoundary(const BoundarySamples& samples, const Box& container, double h,
                                 double restDensity, double fullVolume, BoundaryKernel kernel,

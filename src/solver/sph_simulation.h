@@ -88,8 +88,7 @@ class SphSimulation final : public Simulation {
     std::size_t bytesHeld() const override {
         return store_.bytesHeld() + search_.bytesHeld() + method_->bytesHeld() +
                boundaryStart_.size() * sizeof(Index) +
-               (boundaryPos_.size() + boundaryNormal_.size() + boundaryVelocity_.size()) *
-                   sizeof(Real4) +
+               (boundaryPos_.size() + boundaryVelocity_.size()) * sizeof(Real4) +
                boundaryNear_.size();
     }
     Index occupiedCells() const override { return search_.occupiedCells(); }
@@ -144,7 +143,6 @@ class SphSimulation final : public Simulation {
     BoundaryView boundaryView() {
         BoundaryView walls = boundary_;
         walls.pos = boundaryPos_.data();
-        walls.normal = boundaryNormal_.data();
         walls.velocity = boundaryVelocity_.size() > 0 ? boundaryVelocity_.data() : nullptr;
         walls.cells.cellBound = boundaryStart_.data();
         walls.near = boundaryNear_.data();
@@ -155,7 +153,6 @@ class SphSimulation final : public Simulation {
         const BoundaryParticles& walls = setup.boundary;
         if (walls.size() > 0) {
             exec_.upload(boundaryPos_, walls.pos.data(), walls.pos.size());
-            exec_.upload(boundaryNormal_, walls.normal.data(), walls.normal.size());
             exec_.upload(boundaryVelocity_, walls.velocity.data(), walls.velocity.size());
             exec_.upload(boundaryStart_, walls.cellStart.data(), walls.cellStart.size());
             exec_.upload(boundaryNear_, walls.near.data(), walls.near.size());
@@ -177,7 +174,7 @@ class SphSimulation final : public Simulation {
     Buffer<ObstacleBox> boxes_;
     Buffer<ObstacleSphere> spheres_;
     BoundaryView boundary_;  // geometry of the static wall grid; pointers filled by boundaryView()
-    Buffer<Real4> boundaryPos_, boundaryNormal_, boundaryVelocity_;
+    Buffer<Real4> boundaryPos_, boundaryVelocity_;
     Buffer<Index> boundaryStart_;
     Buffer<unsigned char> boundaryNear_;
     StageTimes times_;

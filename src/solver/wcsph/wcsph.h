@@ -58,7 +58,7 @@ class Wcsph final : public PressureSolver<Exec> {
         if (s.params.model == FluidModel::DeltaSph) {
             fit(s);
             s.search.update(
-                s.exec, s.store, [] WEIR_HD() {}, pressureTerms(s));
+                s.exec, s.store, [] WEIR_HD() {}, keptDensities(s));
             return;
         }
         s.search.update(s.exec, s.store, [] WEIR_HD() {});
@@ -69,13 +69,16 @@ class Wcsph final : public PressureSolver<Exec> {
 
     void runStage(Context& s, Stage stage) override {
         fit(s);
-        if (s.params.model == FluidModel::DeltaSph) {  // grid (with the pressure terms), one pass
+        if (s.params.model == FluidModel::DeltaSph) {  // grid, then the force and density passes
             if (stage == Stage::Grid) {
                 s.search.update(
-                    s.exec, s.store, [] WEIR_HD() {}, pressureTerms(s));
+                    s.exec, s.store, [] WEIR_HD() {}, keptDensities(s));
             } else if (stage == Stage::Force) {
                 s.search.visit(s.store.pos(), s.store.count(),
-                               [&](const auto& nb) { interactAndMove(s, nb); });
+                               [&](const auto& nb) { deltaForces(s, nb); });
+            } else if (stage == Stage::Density) {
+                s.search.visit(s.store.pos(), s.store.count(),
+                               [&](const auto& nb) { deltaDensities(s, nb); });
             }
             return;
         }
@@ -107,55 +110,78 @@ class Wcsph final : public PressureSolver<Exec> {
     }
 
     std::size_t bytesHeld() const override {
-        return pressureTerm_.size() * sizeof(Real) + acc_.size() * sizeof(Real4);
+        return (pressureTerm_.size() + density_.size()) * sizeof(Real) +
+               (acc_.size() + wallState_.size()) * sizeof(Real4);
     }
 
     // ---- The stages (public only because CUDA lambdas need a public enclosing function) ----
 
-    // delta-SPH (physics/delta_sph.h): the grid build computes every particle's pressure term as
-    // it moves it; one pass over the neighbours then gives forces and density rates and moves it.
+    // delta-SPH (physics/delta_sph.h): the grid build keeps every particle's density and
+    // pressure term as it moves it; a force pass gives the new velocities, a density pass the
+    // new densities (wcsph_stages.h: a symplectic Euler step).
     void deltaStep(Context& s) {
         StepClock* clock = s.clock;
         const SphParams params = s.params;
         fit(s);
         s.search.update(
-            s.exec, s.store, [=] WEIR_HD() { beginStep(*clock, params); }, pressureTerms(s));
-        s.search.visit(s.store.pos(), s.store.count(),
-                       [&](const auto& nb) { interactAndMove(s, nb); });
+            s.exec, s.store, [=] WEIR_HD() { beginStep(*clock, params); }, keptDensities(s));
+        s.search.visit(s.store.pos(), s.store.count(), [&](const auto& nb) {
+            deltaWalls(s, nb);
+            deltaForces(s, nb);
+            deltaDensities(s, nb);
+        });
+        s.store.commitMotion();
         s.exec.forEach(1, [=] WEIR_HD(Index) { endStep(*clock); });
     }
 
-    // term[to] = p / rho^2 of the particle moved from `from` (its density in the velocity's w).
-    struct PressureTerms {
+    // As the grid build moves particle `from` to `to`: its density and p / rho^2 into the
+    // method's arrays (in the new order).
+    struct KeptDensities {
         const Real4* vel;
-        Real* term;
+        Real *density, *term;
         SphParams params;
         WEIR_HD void operator()(Index from, Index to) const {
-            term[to] = pressureTermOf(params, vel[from].w);
+            const Real rho = vel[from].w;
+            density[to] = rho;
+            term[to] = pressureTermOf(params, rho);
         }
     };
-    PressureTerms pressureTerms(Context& s) {
-        return {s.store.vel(), pressureTerm_.data(), s.params};
+    KeptDensities keptDensities(Context& s) {
+        return {s.store.vel(), density_.data(), pressureTerm_.data(), s.params};
+    }
+
+    // Each boundary particle's pressure and velocity, extrapolated from the fluid near it.
+    template <class Neighbours>
+    void deltaWalls(Context& s, const Neighbours& nb) {
+        const Index walls = s.boundary.count;
+        if (s.params.walls != WallKind::Particles || walls == 0) {
+            return;
+        }
+        s.exec.stageBegin("walls");
+        const ParticleView pv = view(s);
+        const SphParams params = s.params;
+        Real4* state = wallState_.data();
+        s.exec.forEach(walls, [=] WEIR_HD(Index b) { deltaWallAt(b, pv, nb, params, state); });
+        s.exec.stageEnd("walls");
     }
 
     template <class Neighbours>
-    void interactAndMove(Context& s, const Neighbours& nb) {
+    void deltaForces(Context& s, const Neighbours& nb) {
         s.exec.stageBegin("force");
         if constexpr (Exec::isDevice && fusesForceAndDisplacement<Neighbours>()) {
             if (teamSize(s) == 2) {
-                interactAndMovePass<2>(s, nb);
+                deltaForcePass<2>(s, nb);
             } else {
-                interactAndMovePass<1>(s, nb);
+                deltaForcePass<1>(s, nb);
             }
         } else {
-            interactAndMovePass<1>(s, nb);
+            deltaForcePass<1>(s, nb);
         }
-        s.store.commitMotion();
         s.exec.stageEnd("force");
     }
 
     template <int TeamSize, class Neighbours>
-    void interactAndMovePass(Context& s, const Neighbours& nb) {
+    void deltaForcePass(Context& s, const Neighbours& nb) {
         const ParticleView pv = view(s);
         const SphParams params = s.params;
         const ObstacleView obstacles = s.obstacles;
@@ -163,8 +189,23 @@ class Wcsph final : public PressureSolver<Exec> {
         StepClock* clock = s.clock;
         Real4 *newPos = s.store.nextPos(), *newVel = s.store.nextVel();
         s.exec.template forEachTeam<TeamSize>(pv.count, [=] WEIR_HD(Index i, Team<TeamSize> team) {
-            interactAndMoveAt(i, pv, nb, params, obstacles, fault, clock, newPos, newVel, team);
+            deltaForceAt(i, pv, nb, params, obstacles, fault, clock, newPos, newVel, team);
         });
+    }
+
+    template <class Neighbours>
+    void deltaDensities(Context& s, const Neighbours& nb) {
+        s.exec.stageBegin("density");
+        const ParticleView pv = view(s);
+        const SphParams params = s.params;
+        const Real* density = density_.data();
+        Real4* moved = s.store.nextVel();
+        FaultRecord* fault = s.fault;
+        const StepClock* clock = s.clock;
+        s.exec.forEach(pv.count, [=] WEIR_HD(Index i) {
+            deltaDensityAt(i, pv, nb, params, density, moved, fault, clock);
+        });
+        s.exec.stageEnd("density");
     }
 
     // Density and pressure term of every particle; skipped in a no-op step when `inStep`.
@@ -255,14 +296,20 @@ class Wcsph final : public PressureSolver<Exec> {
     // Sizes the method's arrays to the particle count (no allocation unless it grew).
     void fit(Context& s) {
         pressureTerm_.resize(std::size_t(s.store.count()));
+        if (s.params.model == FluidModel::DeltaSph) {
+            density_.resize(std::size_t(s.store.count()));
+            wallState_.resize(std::size_t(s.boundary.count));
+        }
         if (s.search.mode() != NeighbourMode::Dense && s.params.model == FluidModel::Paper) {
             acc_.resize(std::size_t(s.store.count()));  // the dense path fuses force and motion
         }
     }
 
     ParticleView view(Context& s) {
+        BoundaryView walls = s.boundary;
+        walls.state = wallState_.data();
         return {s.store.pos(),        s.store.vel(),   acc_.data(),
-                pressureTerm_.data(), s.store.count(), s.boundary};
+                pressureTerm_.data(), s.store.count(), walls};
     }
 
     // Lanes per particle in the dense path's force pass on the GPU (core/team.h): two where one
@@ -281,6 +328,8 @@ class Wcsph final : public PressureSolver<Exec> {
     }
 
     Buffer<Real> pressureTerm_;  // the density stage's pressureTermOf, for the force stage
+    Buffer<Real> density_;       // delta-SPH: each particle's density at the step's start
+    Buffer<Real4> wallState_;    // delta-SPH: each boundary particle's velocity and p / rho^2
     Buffer<Real4> acc_;          // the paper's stages: force stage to displacement stage
     int teamOverride_ = teamOverride();
 };

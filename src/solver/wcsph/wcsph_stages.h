@@ -143,16 +143,27 @@ WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, co
 }
 
 // ---- The delta-SPH model (FluidModel::DeltaSph, physics/delta_sph.h) ----
+//
+// Two passes over the neighbours, a symplectic Euler step: the first gives each particle its new
+// velocity from the forces of the step's start (v' = v + dt a(x, v, rho)), the second its density
+// rate from the new velocities (rho' = rho + dt D(x, v')), and the particle moves by the new
+// velocity (x' = x + dt v'). Both rates from the old state (explicit Euler for the pressure
+// waves) grow any wave by sqrt(1 + (omega dt)^2) a step: the fluid then holds together only at a
+// time step a third as large, and only thanks to its dissipation.
 
-// Walls of the simple model under delta-SPH: the container planes' share of the density changes
-// as the particle moves through the wall weight (d share / ds times the speed along the normal),
-// and they push by the particle's own pressure (physics/wall_weight.h).
-WEIR_HD inline void addWallWeightRates(const SphParams& p, const Vec3& x, const Vec3& v, Real rhoi,
-                                       Real pi, ParticleRates& rates) {
-    const Real step = p.wallWeight.invStep > Real(0) ? Real(1) / p.wallWeight.invStep : Real(0);
-    if (step == Real(0)) {
-        return;
+// Walls of the simple model: the container planes push by the particle's own pressure
+// (physics/wall_weight.h).
+WEIR_HD inline Vec3 wallWeightAcceleration(const SphParams& p, const Vec3& x, Real rhoi, Real pi) {
+    return wallAcceleration(p.wallWeight, p.boxMin, p.boxMax, x, rhoi, pi);
+}
+// ... and their share of the density changes as the particle moves through the wall weight
+// (d share / ds times the speed along the normal).
+WEIR_HD inline Real wallWeightDensityRate(const SphParams& p, const Vec3& x, const Vec3& v) {
+    if (p.wallWeight.invStep <= Real(0)) {
+        return Real(0);
     }
+    const Real step = Real(1) / p.wallWeight.invStep;
+    Real rate = 0;
     for (int a = 0; a < 3; ++a) {
         for (int side = 0; side < 2; ++side) {
             const Real s = side == 0 ? x[a] - p.boxMin[a] : p.boxMax[a] - x[a];
@@ -160,25 +171,36 @@ WEIR_HD inline void addWallWeightRates(const SphParams& p, const Vec3& x, const 
             wallSample(p.wallWeight, s, share0, push0);
             wallSample(p.wallWeight, s + step, share1, push1);
             const Real slope = (share1 - share0) * p.wallWeight.invStep;  // d share / ds <= 0
-            const Real towards = side == 0 ? v[a] : -v[a];                // ds / dt
-            rates.densityRate += p.restDensity * slope * towards;
+            rate += p.restDensity * slope * (side == 0 ? v[a] : -v[a]);   // ds / dt = +-v
         }
     }
-    rates.acceleration += wallAcceleration(p.wallWeight, p.boxMin, p.boxMax, x, rhoi, pi);
+    return rate;
 }
 
-// One pass of delta-SPH: i's pressure, viscous and artificial forces and its density's rate from
-// every neighbour and wall, then the move (semi-implicit Euler; the density by the continuity
-// equation), the collision safety net and the blow-up checks. The new state goes to separate
-// arrays, since other particles still read this one's in the same pass. A team (core/team.h)
-// shares the neighbours; its leader moves the particle.
+// Before the first pass, each boundary particle b: the pressure and velocity the fluid near it
+// extrapolates to it (physics/delta_sph.h); walls far from the fluid keep the wall's velocity and
+// no pressure.
+template <class Neighbours>
+WEIR_HD inline void deltaWallAt(Index b, const ParticleView& pv, const Neighbours& nb,
+                                const SphParams& params, Real4* state) {
+    const BoundaryView& bv = pv.boundary;
+    const Vec3 xb = bv.pos[b].xyz();
+    const Vec3 vWall = bv.velocity != nullptr ? bv.velocity[b].xyz() : Vec3();
+    state[b] = extrapolateToWall(params, nb, xb, vWall, pv.pos, pv.vel, pv.pressureTerm);
+}
+
+// First pass: the forces on i (pressure, the fluid's viscosity, artificial viscosity, walls,
+// gravity) and its new velocity, with the collision safety net applied to where it will be;
+// newPos, newVel get that place and velocity (the density is still the old one). Ghosts (of a
+// distributed run) are moved too, without records: the owned particles' second pass reads their
+// new velocities.
 template <class Neighbours, int TeamSize = 1>
-WEIR_HD inline void interactAndMoveAt(Index i, const ParticleView& pv, const Neighbours& nb,
-                                      const SphParams& params, const ObstacleView& obstacles,
-                                      FaultRecord* fault, StepClock* clock, Real4* newPos,
-                                      Real4* newVel, Team<TeamSize> team = {}) {
+WEIR_HD inline void deltaForceAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                 const SphParams& params, const ObstacleView& obstacles,
+                                 FaultRecord* fault, StepClock* clock, Real4* newPos, Real4* newVel,
+                                 Team<TeamSize> team = {}) {
     const Real4 v4 = pv.vel[i];
-    if (clock->dt == Real(0) || isGhost(pv.pos[i])) {  // a no-op step, or a ghost: carried over
+    if (clock->dt == Real(0)) {  // a no-op step: carried over
         if (team.leader()) {
             newPos[i] = pv.pos[i];
             newVel[i] = v4;
@@ -187,7 +209,7 @@ WEIR_HD inline void interactAndMoveAt(Index i, const ParticleView& pv, const Nei
     }
     const Vec3 xi = pv.position(i), vi = v4.xyz();
     const Real rhoi = v4.w, termI = pv.pressureTerm[i], h2 = params.wendland.h2;
-    ParticleRates rates;
+    Vec3 acc;
     bool collapsed = false;
     nb.forEachCandidate(
         i,
@@ -196,33 +218,83 @@ WEIR_HD inline void interactAndMoveAt(Index i, const ParticleView& pv, const Nei
             const Real r2 = lengthSquared(rVec);
             if (r2 < h2 && r2 > Real(0)) {
                 const Real4 vj = pv.vel[j];
-                addFluidNeighbour(params, rVec, r2, rhoi, vj.w, termI, pv.pressureTerm[j], vi,
-                                  vj.xyz(), rates);
+                addFluidMomentum(params, rVec, r2, rhoi, vj.w, termI, pv.pressureTerm[j], vi,
+                                 vj.xyz(), acc);
             } else if (r2 == Real(0) && j != i) {
                 collapsed = true;
             }
         },
         team);
-    rates.acceleration = Vec3(team.sum(rates.acceleration.x), team.sum(rates.acceleration.y),
-                              team.sum(rates.acceleration.z));
-    rates.densityRate = team.sum(rates.densityRate);
+    acc = Vec3(team.sum(acc.x), team.sum(acc.y), team.sum(acc.z));
     collapsed = team.sum(collapsed ? Real(1) : Real(0)) > Real(0);
     if (!team.leader()) {
         return;
     }
     const Real pi = pressureFromDensity(params, rhoi);
     if (params.walls == WallKind::Particles) {
-        addBoundaryRates(pv.boundary, params, xi, vi, rhoi, pi, termI, rates);
+        const BoundaryView& bv = pv.boundary;
+        forEachBoundaryNeighbour(bv, params, xi, [&](Index b, const Vec3& rVec, Real r2) {
+            addBoundaryMomentum(params, rVec, r2, rhoi, termI, vi, bv.pos[b].w, bv.state[b], acc);
+        });
     } else {
-        addWallWeightRates(params, xi, vi, rhoi, pi, rates);
+        acc += wallWeightAcceleration(params, xi, rhoi, pi);
     }
-    const Vec3 a = rates.acceleration + params.gravity;
+    const Vec3 a = acc + params.gravity;
     Vec3 x = xi, v = vi;
-    advanceParticle(x, v, a, i, params, obstacles, fault, clock);
-    const Real rho = rhoi + clock->dt * rates.densityRate;
-    checkDensity(rho, collapsed, i, params, fault, clock);
-    newPos[i] = Real4::from(x);
-    newVel[i] = Real4::from(v, rho);
+    if (isGhost(pv.pos[i])) {  // its owner records and checks it
+        v += a * clock->dt;
+        x += v * clock->dt;
+        collide(x, v, params, obstacles);
+        newPos[i] = Real4::from(x, pv.pos[i].w);
+    } else {
+        advanceParticle(x, v, a, i, params, obstacles, fault, clock);
+        checkDensity(rhoi, collapsed, i, params, fault, clock);
+        newPos[i] = Real4::from(x);
+    }
+    newVel[i] = Real4::from(v, rhoi);
+}
+
+// Second pass: i's density rate from the new velocities (`moved`: the first pass's newVel) at the
+// old positions, continuity and density diffusion with the old densities (`density`), written
+// into the new velocity's w.
+template <class Neighbours, int TeamSize = 1>
+WEIR_HD inline void deltaDensityAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                   const SphParams& params, const Real* density, Real4* moved,
+                                   FaultRecord* fault, const StepClock* clock,
+                                   Team<TeamSize> team = {}) {
+    if (clock->dt == Real(0) || isGhost(pv.pos[i])) {
+        return;  // carried over; a ghost's density is its owner's
+    }
+    const Vec3 xi = pv.position(i);
+    const Vec3 vi = moved[i].xyz();
+    const Real rhoi = density[i], h2 = params.wendland.h2;
+    Real rate = 0;
+    nb.forEachCandidate(
+        i,
+        [&](Index j) {
+            const Vec3 rVec = xi - pv.position(j);
+            const Real r2 = lengthSquared(rVec);
+            if (r2 < h2 && r2 > Real(0)) {
+                rate += fluidDensityRate(params, rVec, r2, rhoi, density[j], vi, moved[j].xyz());
+            }
+        },
+        team);
+    rate = team.sum(rate);
+    if (!team.leader()) {
+        return;
+    }
+    if (params.walls == WallKind::Particles) {
+        const BoundaryView& bv = pv.boundary;
+        forEachBoundaryNeighbour(bv, params, xi, [&](Index b, const Vec3& rVec, Real r2) {
+            const Vec3 vb = bv.velocity != nullptr ? bv.velocity[b].xyz() : Vec3();
+            rate += boundaryDensityRate(params, rVec, r2, vi, bv.pos[b].w, vb);
+        });
+    } else {
+        rate += wallWeightDensityRate(params, xi, vi);
+    }
+    const Real rho = rhoi + clock->dt * rate;
+    checkDensity(rho, false, i, params, fault, clock);
+    moved[i].w = rho;
 }
 
 }  // namespace weir
