@@ -40,3 +40,24 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
     cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release
 fi
 cmake --build "$build" -j "$(nproc)"
+
+# Install the binary so that `weir` is on PATH: into /usr/local/bin as root (or with sudo that
+# needs no password), else into ~/.local/bin; WEIR_PREFIX=DIR installs into DIR/bin instead.
+install_with=()
+if [ -n "${WEIR_PREFIX:-}" ]; then
+    prefix=$WEIR_PREFIX
+elif [ "$(id -u)" -eq 0 ]; then
+    prefix=/usr/local
+elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+    prefix=/usr/local
+    install_with=(sudo)
+else
+    prefix=$HOME/.local
+fi
+${install_with[@]+"${install_with[@]}"} cmake --install "$build" --prefix "$prefix" >/dev/null
+echo "weir setup: installed $prefix/bin/weir"
+case ":$PATH:" in
+    *":$prefix/bin:"*) ;;
+    *) echo "weir setup: $prefix/bin is not on PATH; add it, e.g. in ~/.bashrc:" \
+            "export PATH=\"$prefix/bin:\$PATH\"" ;;
+esac

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/count_option.h"
 #include "core/check.h"
 #include "core/exec_cpu.h"
 #include "grid/cell_id.h"
@@ -102,25 +103,6 @@ std::string fixed(double v, int digits) {
 }  // namespace
 
 // Particle counts as users write them: 10000, 50k, 1M, 1B.
-std::int64_t parseCount(const std::string& text) {
-    std::size_t used = 0;
-    double value = std::stod(text, &used);
-    std::string suffix = text.substr(used);
-    if (suffix == "k" || suffix == "K") {
-        value *= 1e3;
-    } else if (suffix == "m" || suffix == "M") {
-        value *= 1e6;
-    } else if (suffix == "g" || suffix == "G" || suffix == "b" || suffix == "B") {
-        value *= 1e9;
-    } else if (!suffix.empty()) {
-        throw std::invalid_argument("bad particle count '" + text + "': use e.g. 10000, 50k, 1M");
-    }
-    if (value < 1 || value > 2147483647.0) {
-        throw std::invalid_argument("particle count '" + text + "' out of range [1, 2147483647]");
-    }
-    return std::int64_t(value);
-}
-
 std::vector<std::string> splitList(const std::string& text) {
     std::vector<std::string> items;
     std::stringstream in(text);
@@ -137,13 +119,10 @@ int benchCommand(const BenchOptions& options, SpriteDrawTimer* spriteTimer) {
         return scalingBenchCommand(options);
     }
     try {
-        Scene scene = options.scene.empty()
-                          ? builtinScene("dam_break")
-                          : (std::filesystem::exists(options.scene) ? loadScene(options.scene)
-                                                                    : builtinScene(options.scene));
+        Scene scene = resolveScene(options.scene);
         std::vector<std::int64_t> sizes;
         for (const std::string& s : splitList(options.sizes)) {
-            sizes.push_back(parseCount(s));
+            sizes.push_back(parseCount(s, "--sizes", 1, kMaxParticles, kParticleLimitText));
         }
         const bool gpu = cudaDeviceAvailable();
         std::vector<Column> columns;
@@ -159,7 +138,7 @@ int benchCommand(const BenchOptions& options, SpriteDrawTimer* spriteTimer) {
         for (const std::string& w : wanted) {
             if (w != "auto" && std::none_of(allColumns().begin(), allColumns().end(),
                                             [&](const Column& c) { return c.name == w; })) {
-                throw std::invalid_argument("unknown bench column '" + w +
+                throw std::invalid_argument("--backends: unknown bench column '" + w +
                                             "': allowed are cpu-brute, cpu-grid, cpu-dense, "
                                             "cuda-brute, cuda-grid, cuda-dense, auto");
             }

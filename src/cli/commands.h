@@ -40,8 +40,9 @@ struct RunOptions {
     std::string format = "vtu";
     bool explain = false;
     bool quiet = false;
-    bool render = false;  // also render each frame to <out>/images/ (weir_render)
-    bool mesh = false;    // also write each frame's surface to <out>/mesh/
+    bool render = false;     // also render each frame to <out>/images/ (weir_render)
+    bool mesh = false;       // also write each frame's surface to <out>/mesh/
+    bool overwrite = false;  // replace the frames of an earlier run in outDir
 };
 
 struct BenchOptions {
@@ -74,15 +75,18 @@ struct RenderOptions {
     int width = 1280;
     int height = 720;
     std::string color = "speed";
-    std::string camera;            // "yaw,pitch,distance"; empty: framed on the container
-    std::string target;            // "x,y,z"; empty: the container's centre
-    std::string scene;             // scene whose container and obstacles are drawn; empty: none
-    std::string video;             // an .mp4 made from the images with ffmpeg; empty: none
-    bool surface = false;          // draw the marching-cubes surface instead of particles
+    std::string camera;    // "yaw,pitch,distance"; empty: framed on the container
+    std::string target;    // "x,y,z"; empty: the container's centre
+    std::string scene;     // scene whose container and obstacles are drawn; empty: the run's own
+                           // (recorded in frames.json), else none
+    std::string video;     // an .mp4 made from the images with ffmpeg; empty: none
+    bool surface = false;  // draw the marching-cubes surface instead of particles
     std::string backend = "auto";  // where the surface is reconstructed
     double spacing = 0;            // particle spacing [m]; 0: from the scene or the first frame
     int samples = 4;
     bool quiet = false;
+    std::optional<std::int64_t> frame;  // --frame N: only this frame
+    std::string frames;                 // --frames A:B: frames A to B (cli/frame_selection.h)
 };
 
 // `weir mesh` and `weir run --mesh`: the fluid surface of each frame by marching cubes.
@@ -95,6 +99,8 @@ struct MeshOptions {
     double cellSize = 0;  // marching-cubes cell [m]; 0: half the spacing
     double iso = 0;       // in particle spacings; > 0 inflates
     bool quiet = false;
+    std::optional<std::int64_t> frame;  // --frame N: only this frame
+    std::string frames;                 // --frames A:B: frames A to B
 };
 
 struct ViewOptions {
@@ -110,6 +116,7 @@ struct ViewOptions {
     std::int64_t maxFrames = 0;  // quit after this many drawn frames; 0: when closed
     std::string press;           // keys pressed on successive frames, e.g. "none,c,m,space"
     std::string screenshot;      // PNG of the last frame (with maxFrames)
+    std::string record;          // an .mp4 of every frame drawn, made by ffmpeg; empty: none
 };
 
 struct Scene;
@@ -170,11 +177,10 @@ class SpriteDrawTimer {
 int benchCommand(const BenchOptions& options, SpriteDrawTimer* spriteTimer = nullptr);
 // `weir bench --scaling` (cli/scaling_bench.cpp).
 int scalingBenchCommand(const BenchOptions& options);
-// "10000", "50k", "1M", "1B" as a particle count; throws std::invalid_argument.
-std::int64_t parseCount(const std::string& text);
 // "a,b,,c" as {"a", "b", "c"}.
 std::vector<std::string> splitList(const std::string& text);
-int infoCommand();
+// renderingBuilt: whether this binary has the drawing commands (known where they are linked).
+int infoCommand(bool renderingBuilt);
 int validateCommand(const ValidateOptions& options);
 
 }  // namespace weir

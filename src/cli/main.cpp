@@ -1,15 +1,22 @@
 // weir's command line: `weir run`, `weir render`, `weir mesh`, `weir view`, `weir bench`,
 // `weir info`.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <iostream>
 
 #include "cli/commands.h"
+#include "cli/count_option.h"
 #include "cluster/communicator.h"
 #include "core/backend.h"
+#include "io/field_registry.h"
+#include "io/frame_formats.h"
+#include "io/mesh_writer.h"
 #include "scene/scene.h"
 #if defined(WEIR_HAS_RENDER)
-#include "render/render_commands.h"
-#include "render/sprite_timer.h"
+#include "cli/render_commands.h"
+#include "cli/sprite_timer.h"
 #endif
 
 namespace {
@@ -20,6 +27,34 @@ constexpr const char* kNoRendering =
     "libgl-dev libpng-dev libegl-mesa0 libgl1-mesa-dri, then configure and build again (or run "
     "scripts/setup.sh).\n";
 
+// The colourable fields of the field registry (render/colour_map.h colours by these).
+std::vector<std::string> colourChoiceNames() {
+    std::vector<std::string> names;
+    for (const weir::FieldInfo& field : weir::particleFieldInfo()) {
+        if (!field.colourName.empty()) {
+            names.push_back(field.colourName);
+        }
+    }
+    return names;
+}
+
+std::string colourChoices() {
+    std::string list;
+    for (const std::string& name : colourChoiceNames()) {
+        list += (list.empty() ? "" : ", ") + name;
+    }
+    return list;
+}
+
+// --frame N and --frames A:B of the commands that read a run's frames (render, mesh).
+void addFrameSelection(CLI::App* cmd, std::optional<std::int64_t>& frame, std::string& frames) {
+    CLI::Option* one = cmd->add_option("--frame", frame, "Only frame N (its index in frames.json)")
+                           ->transform(weir::countOption(0, 99999999));
+    CLI::Option* range = cmd->add_option(
+        "--frames", frames, "Only frames A to B, both included (A:B; A: from A on, :B up to B)");
+    one->excludes(range);
+}
+
 // The drawing options `weir render` and `weir run --render` share.
 void addImageOptions(CLI::App* cmd, weir::RenderOptions& o) {
     cmd->add_option("--width", o.width, "Image width in pixels")
@@ -28,8 +63,8 @@ void addImageOptions(CLI::App* cmd, weir::RenderOptions& o) {
     cmd->add_option("--height", o.height, "Image height in pixels")
         ->check(CLI::Range(16, 16384))
         ->capture_default_str();
-    cmd->add_option("--color,--colour", o.color, "Particle colour: speed, density or pressure")
-        ->check(CLI::IsMember({"speed", "density", "pressure"}))
+    cmd->add_option("--color,--colour", o.color, "Particle colour by: " + colourChoices())
+        ->check(CLI::IsMember(colourChoiceNames()))
         ->capture_default_str();
     cmd->add_option("--camera", o.camera,
                     "Camera as yaw,pitch,distance (degrees, degrees, metres); default: framed "
@@ -43,9 +78,25 @@ void addImageOptions(CLI::App* cmd, weir::RenderOptions& o) {
 
 }  // namespace
 
+// OpenMP threads that wait for work spin by default (libgomp: 300 000 turns before sleeping).
+// On a machine shared with one other busy process, a spinning thread holds a core that the thread
+// it waits for needs, and a small run took 13x longer (issue 20). So weir's threads sleep while
+// they wait, unless the user chose a policy in OMP_WAIT_POLICY. libgomp reads its environment
+// once, as it loads (before main), so the choice takes a re-exec of this same binary; if that
+// fails, weir runs on with the runtime's default.
+void sleepWhileWaitingUnlessChosen(char** argv) {
+    if (std::getenv("OMP_WAIT_POLICY") != nullptr) {
+        return;
+    }
+    ::setenv("OMP_WAIT_POLICY", "passive", 1);
+    ::setenv("WEIR_SET_OMP_WAIT_POLICY", "1", 1);  // for `weir info`: who chose it
+    ::execv("/proc/self/exe", argv);
+}
+
 int weirMain(int argc, char** argv);
 
 int main(int argc, char** argv) {
+    sleepWhileWaitingUnlessChosen(argv);
     // Under mpirun: MPI first, and one GPU per rank of each host (cluster/).
     weir::startCommunication(&argc, &argv);
     if (weir::launchedByMpi()) {
@@ -82,13 +133,19 @@ int weirMain(int argc, char** argv) {
                      "dense cell table: faster) or brute (O(N^2), for comparison)")
         ->check(CLI::IsMember({"auto", "grid", "dense", "brute"}))
         ->capture_default_str();
-    runCmd->add_option("--particles,-n", run.particles, "Particle count (overrides the scene)")
-        ->check(CLI::Range(std::int64_t(1), std::int64_t(2147483647)));
+    runCmd
+        ->add_option("--particles,-n", run.particles,
+                     "Particle count, e.g. 20000, 20k, 5M, 1e9 (overrides the scene)")
+        ->transform(countOption(1, kMaxParticles, kParticleLimitText));
     runCmd->add_option("--frames", run.frames, "Stop after this many frames (default: duration)")
-        ->check(CLI::Range(std::int64_t(0), std::int64_t(1) << 40));
+        ->transform(countOption(0, std::int64_t(1) << 40));
     runCmd->add_option("--out,-o", run.outDir, "Output directory (default out/<scene name>)");
-    runCmd->add_option("--format", run.format, "Frame format: vtu (+ .pvd), ply or csv")
-        ->check(CLI::IsMember({"vtu", "ply", "csv"}))
+    runCmd->add_flag("--overwrite", run.overwrite,
+                     "Replace the frames of an earlier run in the output directory (they are "
+                     "removed first, with its images/ and mesh/ files); without it such a "
+                     "directory is refused");
+    runCmd->add_option("--format", run.format, "Frame format. " + frameFormatHelp())
+        ->check(CLI::IsMember(frameFormatNames()))
         ->capture_default_str();
     runCmd->add_flag("--explain", run.explain, "Print the derived parameters and why");
     runCmd->add_flag("--quiet,-q", run.quiet, "No progress line");
@@ -101,7 +158,7 @@ int weirMain(int argc, char** argv) {
     addImageOptions(runCmd, runRender);
     runCmd->add_flag("--mesh", run.mesh,
                      "Also write every frame's surface to OUT/mesh/surface_NNNNN.obj/.ply");
-    runCmd->add_option("--mesh-format", runMesh.formats, "With --mesh: obj, ply or obj,ply")
+    runCmd->add_option("--mesh-format", runMesh.formats, "With --mesh: " + meshFormatHelp())
         ->capture_default_str();
     runCmd->add_option("--cell-size", runMesh.cellSize,
                        "With --mesh: marching-cubes cell in metres (default half the spacing)");
@@ -110,7 +167,7 @@ int weirMain(int argc, char** argv) {
     CLI::App* benchCmd = app.add_subcommand(
         "bench", "Time every stage of the step: the paper's Tables 1-3 on this machine");
     benchCmd->add_option("scene", bench.scene, "Scene file or built-in scene; default dam_break");
-    benchCmd->add_option("--sizes", bench.sizes, "Particle counts, e.g. 10k,50k,100k,1M")
+    benchCmd->add_option("--sizes", bench.sizes, "Particle counts, e.g. 10k,50k,100k,1M,1e9")
         ->capture_default_str();
     benchCmd
         ->add_option("--backends,--columns", bench.columns,
@@ -118,10 +175,10 @@ int weirMain(int argc, char** argv) {
                      "cuda-grid, cuda-dense")
         ->capture_default_str();
     benchCmd->add_option("--steps", bench.steps, "Timed steps; stage times are their medians")
-        ->check(CLI::Range(1, 100000))
+        ->transform(countOption(1, 100000))
         ->capture_default_str();
     benchCmd->add_option("--warmup", bench.warmup, "Untimed steps before timing")
-        ->check(CLI::Range(0, 100000))
+        ->transform(countOption(0, 100000))
         ->capture_default_str();
     benchCmd
         ->add_option("--settle", bench.settle,
@@ -154,7 +211,8 @@ int weirMain(int argc, char** argv) {
     addImageOptions(renderCmd, render);
     renderCmd->add_option("--scene", render.scene,
                           "Scene file or built-in scene whose container and obstacles are drawn "
-                          "(default: a box around the particles)");
+                          "(default: the run's own, recorded in frames.json; else a box around "
+                          "the particles)");
     renderCmd->add_flag("--surface", render.surface,
                         "Draw the fluid's surface (marching cubes) instead of particles");
     renderCmd
@@ -164,10 +222,12 @@ int weirMain(int argc, char** argv) {
         ->capture_default_str();
     renderCmd->add_option("--spacing", render.spacing,
                           "Particle spacing in metres: sets the sphere size and the surface's "
-                          "scale (default: from --scene, else measured on the first frame)");
+                          "scale (default: the run's, from frames.json; else from the scene, "
+                          "else measured on the first frame)");
     renderCmd->add_option("--video", render.video,
                           "Also encode the images into this .mp4 with ffmpeg (H.264)");
     renderCmd->add_flag("--quiet,-q", render.quiet, "No progress line");
+    addFrameSelection(renderCmd, render.frame, render.frames);
 
     MeshOptions mesh;
     CLI::App* meshCmd = app.add_subcommand(
@@ -177,12 +237,14 @@ int weirMain(int argc, char** argv) {
                      "Frames directory written by `weir run` (holds frames.json)")
         ->required();
     meshCmd->add_option("--out,-o", mesh.outDir, "Mesh directory (default FRAMES/mesh)");
-    meshCmd->add_option("--format", mesh.formats, "obj, ply or obj,ply")->capture_default_str();
+    meshCmd->add_option("--format", mesh.formats, "Mesh formats: " + meshFormatHelp())
+        ->capture_default_str();
     meshCmd->add_option("--backend", mesh.backend, "auto (GPU if present), cuda or cpu")
         ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
         ->capture_default_str();
     meshCmd->add_option("--spacing", mesh.spacing,
-                        "Particle spacing in metres (default: measured on the first frame)");
+                        "Particle spacing in metres (default: the run's, from frames.json; "
+                        "else measured on the first frame)");
     meshCmd->add_option("--cell-size", mesh.cellSize,
                         "Marching-cubes cell in metres (default half the spacing)");
     meshCmd
@@ -190,6 +252,7 @@ int weirMain(int argc, char** argv) {
                      "Iso-value in particle spacings: 0 is the fluid surface, > 0 inflates it")
         ->capture_default_str();
     meshCmd->add_flag("--quiet,-q", mesh.quiet, "No progress line");
+    addFrameSelection(meshCmd, mesh.frame, mesh.frames);
 
     ViewOptions view;
     CLI::App* viewCmd = app.add_subcommand(
@@ -205,24 +268,25 @@ int weirMain(int argc, char** argv) {
     viewCmd->add_option("--neighbours", view.neighbours, "auto, grid, dense or brute")
         ->check(CLI::IsMember({"auto", "grid", "dense", "brute"}))
         ->capture_default_str();
-    viewCmd->add_option("--particles,-n", view.particles, "Particle count (overrides the scene)")
-        ->check(CLI::Range(std::int64_t(1), std::int64_t(2147483647)));
+    viewCmd
+        ->add_option("--particles,-n", view.particles,
+                     "Particle count, e.g. 20000, 20k, 5M (overrides the scene)")
+        ->transform(countOption(1, kMaxParticles, kParticleLimitText));
     viewCmd->add_option("--width", view.width, "Window width in pixels")
         ->check(CLI::Range(16, 16384))
         ->capture_default_str();
     viewCmd->add_option("--height", view.height, "Window height in pixels")
         ->check(CLI::Range(16, 16384))
         ->capture_default_str();
-    viewCmd
-        ->add_option("--color,--colour", view.color, "Particle colour: speed, density or pressure")
-        ->check(CLI::IsMember({"speed", "density", "pressure"}))
+    viewCmd->add_option("--color,--colour", view.color, "Particle colour by: " + colourChoices())
+        ->check(CLI::IsMember(colourChoiceNames()))
         ->capture_default_str();
     viewCmd->add_option("--camera", view.camera, "Camera as yaw,pitch,distance");
     viewCmd->add_option("--target", view.target, "Point the camera looks at, x,y,z");
     viewCmd
         ->add_option("--max-frames", view.maxFrames,
                      "Close after drawing this many frames (0: when the window is closed)")
-        ->check(CLI::Range(std::int64_t(0), std::int64_t(1) << 40))
+        ->transform(countOption(0, std::int64_t(1) << 40))
         ->capture_default_str();
     viewCmd->add_option("--press", view.press,
                         "Keys pressed on successive frames, for demos and tests, e.g. "
@@ -230,6 +294,8 @@ int weirMain(int argc, char** argv) {
                         "escape none)");
     viewCmd->add_option("--screenshot", view.screenshot,
                         "With --max-frames: save the last frame drawn to this PNG");
+    viewCmd->add_option("--record", view.record,
+                        "Record every frame drawn into this .mp4 (needs ffmpeg on PATH)");
 
     ValidateOptions validate;
     CLI::App* validateCmd = app.add_subcommand(
@@ -242,12 +308,12 @@ int weirMain(int argc, char** argv) {
     validateCmd
         ->add_option("--tank-resolution", validate.tankResolution,
                      "Particles over the tank's water depth")
-        ->check(CLI::Range(6, 400))
+        ->transform(countOption(6, 400))
         ->capture_default_str();
     validateCmd
         ->add_option("--column-resolution", validate.columnResolution,
                      "Particles across the dam-break column's width")
-        ->check(CLI::Range(6, 400))
+        ->transform(countOption(6, 400))
         ->capture_default_str();
     validateCmd
         ->add_option("--end-time", validate.damEndT,
@@ -335,5 +401,9 @@ int weirMain(int argc, char** argv) {
     if (validateCmd->parsed()) {
         return validateCommand(validate);
     }
-    return infoCommand();
+#if defined(WEIR_HAS_RENDER)
+    return infoCommand(true);
+#else
+    return infoCommand(false);
+#endif
 }

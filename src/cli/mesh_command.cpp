@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/frame_selection.h"
 #include "cli/progress.h"
 #include "io/frame_index.h"
 #include "io/mesh_writer.h"
@@ -21,28 +23,30 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-// "obj", "ply", "obj,ply": each named once.
-std::vector<MeshFormat> parseMeshFormats(const std::string& list) {
+// "obj", "ply", "obj,ply": each named once. `option` is the command's own name for the list
+// ("--format" for weir mesh, "--mesh-format" for weir run), so that errors name what was typed.
+std::vector<MeshFormat> parseMeshFormats(const std::string& list, const std::string& option) {
+    const std::string allowed =
+        "allowed: one or more of " + meshFormatList() + ", comma-separated (e.g. obj,ply)";
     std::vector<MeshFormat> formats;
     std::stringstream in(list);
     for (std::string item; std::getline(in, item, ',');) {
-        MeshFormat format;
+        std::optional<MeshFormat> format;
         try {
             format = parseMeshFormat(item);
         } catch (const std::invalid_argument&) {
-            throw std::invalid_argument("--mesh-format '" + list + "': '" + item +
-                                        "' is not a mesh format; allowed: obj, ply or obj,ply");
+            throw std::invalid_argument(option + " '" + list + "': '" + item +
+                                        "' is not a mesh format; " + allowed);
         }
         for (MeshFormat f : formats) {
-            if (f == format) {
-                throw std::invalid_argument("--mesh-format '" + list + "' names '" + item +
-                                            "' twice");
+            if (f == *format) {
+                throw std::invalid_argument(option + " '" + list + "' names '" + item + "' twice");
             }
         }
-        formats.push_back(format);
+        formats.push_back(*format);
     }
     if (formats.empty()) {
-        throw std::invalid_argument("--mesh-format is empty; allowed: obj, ply or obj,ply");
+        throw std::invalid_argument(option + " is empty; " + allowed);
     }
     return formats;
 }
@@ -128,7 +132,7 @@ class RunMesher : public RunObserver {
    public:
     explicit RunMesher(const MeshOptions& options)
         : options_(options),
-          formats_(parseMeshFormats(options.formats)),
+          formats_(parseMeshFormats(options.formats, "--mesh-format")),
           backend_(parseBackend(options.backend)) {
         checkSurfaceNumbers(options);
     }
@@ -164,29 +168,36 @@ std::unique_ptr<RunObserver> makeRunMesher(const MeshOptions& options) {
 
 int meshCommand(const MeshOptions& options) {
     try {
-        const std::vector<MeshFormat> formats = parseMeshFormats(options.formats);
+        const std::vector<MeshFormat> formats = parseMeshFormats(options.formats, "--format");
         checkSurfaceNumbers(options);
         const Backend backend = parseBackend(options.backend);
-        const std::vector<FrameEntry> frames = readFrameIndex(options.framesDir);
+        const std::vector<FrameEntry> all = readFrameIndex(options.framesDir);
+        const std::vector<FrameEntry> frames =
+            selectFrames(all, options.frame, options.frames, options.framesDir);
         const std::string outDir = options.outDir.empty()
                                        ? (fs::path(options.framesDir) / "mesh").string()
                                        : options.outDir;
-        // One spacing for all frames (the first frame is the seeded lattice), so that the
-        // surface keeps its scale as the fluid compresses and splashes.
-        HostParticles particles = readFrameFile(frames.front().path);
+        // One spacing for all frames, so that the surface keeps its scale as the fluid
+        // compresses and splashes: the run's (frames.json), else measured on the run's first
+        // frame (the seeded lattice), whichever frames are meshed.
         double spacing = options.spacing;
         if (spacing == 0) {
-            spacing = estimateParticleSpacing(particles);
+            spacing = readRunRecord(options.framesDir).spacing;
+        }
+        if (spacing == 0) {
+            spacing = estimateParticleSpacing(readFrameFile(all.front().path));
             if (!(spacing > 0)) {
                 throw SurfaceError("cannot estimate the particle spacing from '" +
-                                   frames.front().path + "'; give --spacing");
+                                   all.front().path + "'; give --spacing");
             }
         }
+        HostParticles particles = readFrameFile(frames.front().path);
         FrameMesher mesher(outDir, formats, backend, surfaceOptions(options, spacing));
         if (!options.quiet) {
-            std::cerr << "weir: meshing " << frames.size() << " frames of " << options.framesDir
-                      << " to " << outDir << "/ (spacing " << spacing << " m, cell "
-                      << (options.cellSize > 0 ? options.cellSize : spacing / 2) << " m, "
+            std::cerr << "weir: meshing " << frames.size() << " frame"
+                      << (frames.size() == 1 ? "" : "s") << " of " << options.framesDir << " to "
+                      << outDir << "/ (spacing " << rounded(spacing, 3) << " m, cell "
+                      << rounded(options.cellSize > 0 ? options.cellSize : spacing / 2, 3) << " m, "
                       << backendName(backend) << ")\n";
         }
         ItemProgress progress("mesh", frames.size(), options.quiet);

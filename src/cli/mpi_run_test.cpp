@@ -23,6 +23,7 @@ TEST(Distributed, RunWritesTheFramesOfTheSingleRankRun) {
     options.particles = 3000;
     options.frames = 3;
     options.outDir = out;
+    options.overwrite = true;  // a folder of an earlier run of this test
     options.quiet = true;
     ASSERT_EQ(runCommand(options), 0);
     if (world().rank() != 0) {

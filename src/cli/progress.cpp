@@ -23,6 +23,16 @@ std::string formatDuration(double seconds) {
     return buf;
 }
 
+std::string rounded(double value, int digits) {
+    char buf[48];
+    if (std::isfinite(value) && std::abs(value) >= std::pow(10.0, digits - 1)) {
+        std::snprintf(buf, sizeof buf, "%.0f", value);  // whole numbers stay whole, not 4.27e+03
+    } else {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, value);
+    }
+    return buf;
+}
+
 StatusLine::StatusLine() : live_(isatty(fileno(stderr)) != 0) {}
 
 void StatusLine::show(const char* text) {

@@ -60,5 +60,7 @@ class ItemProgress {
 };
 
 std::string formatDuration(double seconds);
+// `value` to `digits` significant digits for a log line (no trailing noise): 0.000741, 12.3, 4270.
+std::string rounded(double value, int digits);
 
 }  // namespace weir

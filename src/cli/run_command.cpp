@@ -1,9 +1,11 @@
 // `weir run`: scene in, particle frames out, with progress, logs and blow-up detection.
 #include <filesystem>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "cli/run_folder.h"
 #include "cluster/distributed_simulation.h"
 #include "core/check.h"
 #include "grid/cell_id.h"
@@ -18,7 +20,8 @@ Scene resolveScene(const std::string& spec) {
     if (spec.empty()) {
         return builtinScene("dam_break");
     }
-    if (std::filesystem::exists(spec)) {
+    // A folder of that name (say out/dam_break/ seen from out/) does not hide a built-in scene.
+    if (std::filesystem::exists(spec) && !std::filesystem::is_directory(spec)) {
         return loadScene(spec);
     }
     for (const std::string& name : builtinSceneNames()) {
@@ -26,7 +29,25 @@ Scene resolveScene(const std::string& spec) {
             return builtinScene(name);
         }
     }
-    return loadScene(spec);  // reports the missing file
+    std::string names;
+    for (const std::string& name : builtinSceneNames()) {
+        names += (names.empty() ? "" : ", ") + name;
+    }
+    const std::filesystem::path path(spec);
+    if (spec.find('/') != std::string::npos || path.has_extension()) {
+        // Meant as a file: say that it is missing, and name a built-in scene it may stand for.
+        try {
+            return loadScene(spec);
+        } catch (const SceneError& e) {
+            const std::string hint = didYouMeanBuiltinScene(path.stem().string());
+            throw SceneError(
+                std::string(e.what()) +
+                (hint.empty() ? "" : "; a built-in scene is named without a path or .json" + hint));
+        }
+    }
+    throw SceneError("scene '" + spec + "': no such file, and no built-in scene of that name" +
+                     didYouMeanBuiltinScene(spec) + "; the built-in scenes are " + names +
+                     " (weir info lists them)");
 }
 
 namespace {
@@ -34,6 +55,37 @@ namespace {
 std::ostream& nullStream() {
     static std::ostream sink(nullptr);  // no buffer: writes are dropped
     return sink;
+}
+
+// What frames.json records of the run, so that `weir render DIR` needs no --scene and knows the
+// particle spacing (io/frame_index.h reads it back). A scene file is named by its absolute path,
+// which its mesh obstacles' paths are relative to.
+nlohmann::json runRecord(const Scene& scene, std::int64_t particles, double spacing) {
+    std::string source = scene.sourcePath;
+    if (source.rfind("<", 0) != 0) {
+        std::error_code ec;
+        const std::filesystem::path absolute = std::filesystem::absolute(source, ec);
+        source = ec ? source : absolute.lexically_normal().string();
+    }
+    nlohmann::json definition = nlohmann::json::object();
+    if (!scene.json.empty()) {
+        definition = nlohmann::json::parse(scene.json);
+    }
+    return {{"scene", {{"name", scene.name}, {"source", source}, {"definition", definition}}},
+            {"particles", particles},
+            {"spacing", spacing},
+            {"weir", WEIR_VERSION}};
+}
+
+// The frame format's hint with its placeholders filled: "out/dam_break/frame.pvd in ParaView ...".
+std::string howToOpen(FrameFormat format, const std::string& outDir) {
+    std::string hint = format.entry().openHint;
+    const std::string base = (std::filesystem::path(outDir) / "frame").string();
+    const std::size_t at = hint.find("BASE");
+    if (at != std::string::npos) {
+        hint.replace(at, 4, base);
+    }
+    return hint;
 }
 
 }  // namespace
@@ -60,6 +112,9 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             options.frames ? std::min(*options.frames, report.frames) : report.frames;
 
         log << "weir: scene " << scene.name << " (" << scene.sourcePath << ")\n";
+        if (root) {
+            prepareRunFolder(outDir, options.overwrite, log);
+        }
         if (options.explain) {
             for (const std::string& line : report.lines) {
                 log << "  " << line << "\n";
@@ -88,7 +143,7 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         }
         log << "weir: " << sim->particleCount() << " particles on " << backendName(backend) << " ("
             << sim->deviceName() << "), " << neighbourModeName(mode) << " neighbours, dt "
-            << sim->params().timeStep << " s"
+            << rounded(1000 * double(sim->params().timeStep), 3) << " ms"
             << (sim->params().adaptiveTimeStep ? " (adaptive)" : "") << ", about "
             << report.stepsPerFrame << " steps per frame, " << frames << " frames to " << outDir
             << "/\n";
@@ -106,18 +161,30 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         std::unique_ptr<FrameWriter> writer;
         if (root) {
             writer = std::make_unique<FrameWriter>(outDir, format);
+            writer->setRecord(runRecord(scene, sim->particleCount(), report.spacing));
         }
         HostParticles host;
         sim->computeDensity();
         sim->download(host);
+        // Frame 0 counts like every other: with boundary particles (or a scene whose fluid meets
+        // an obstacle) the initial state is compressed already, and the report must say so.
+        DensityDeviation worst;
         if (root) {
             writer->write(0, 0.0, host);
+            worst = densityDeviation(host, sim->params().restDensity);
+            log << "weir: frame 0 (the initial state): " << worst.text() << "\n";
+            if (worst.max > 0.05) {
+                log << "weir: warning: the initial fluid is compressed by up to "
+                    << rounded(100 * worst.max, 3)
+                    << "% (fluid blocks or spheres that overlap or meet closer than the particle "
+                       "spacing, or walls of boundary particles); it pushes apart as the run "
+                       "starts\n";
+            }
         }
         if (observer != nullptr) {
             observer->frame(0, 0.0, host);
         }
         Progress progress(frames, options.quiet || !root);
-        DensityDeviation worst;
         for (std::int64_t frame = 1; frame <= frames; ++frame) {
             sim->advanceTo(double(frame) * report.frameInterval);
             FaultRecord fault = sim->fault();
@@ -149,12 +216,14 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         double seconds = progress.elapsedSeconds();
         log << "weir: done, " << frames + 1 << " frames, " << sim->stepCount() << " steps in "
             << formatDuration(seconds) << " ("
-            << (seconds > 0 ? double(sim->stepCount()) / seconds : 0.0)
+            << rounded(seconds > 0 ? double(sim->stepCount()) / seconds : 0.0, 3)
             << " steps/s); worst frame: " << worst.text() << "\n";
         if (cluster != nullptr) {
             log << "weir: borders moved " << cluster->exchangeStats().rebalances
                 << " times to keep the ranks balanced\n";
         }
+        log << "weir: " << frames + 1 << " frames in " << outDir << "/: open "
+            << howToOpen(format, outDir) << "; or draw them: weir render " << outDir << "\n";
         return kExitOk;
     } catch (...) {
         return reportCaughtError(*comm);

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/count_option.h"
 #include "cluster/communicator.h"
 #include "cluster/distributed_simulation.h"
 #include "core/check.h"
@@ -89,10 +90,7 @@ int scalingBenchCommand(const BenchOptions& options) {
     const bool root = world->rank() == 0;
     try {
         const int ranks = world->size();
-        Scene scene = options.scene.empty()
-                          ? builtinScene("dam_break")
-                          : (std::filesystem::exists(options.scene) ? loadScene(options.scene)
-                                                                    : builtinScene(options.scene));
+        Scene scene = resolveScene(options.scene);
         const Backend backend = cudaDeviceAvailable() ? Backend::Cuda : Backend::Cpu;
         const NeighbourMode mode = NeighbourMode::Auto;
         nlohmann::json record;
@@ -110,7 +108,8 @@ int scalingBenchCommand(const BenchOptions& options) {
                       << options.steps << " steps per block, median of 5 blocks\n";
         }
         for (const std::string& text : splitList(options.sizes)) {
-            const std::int64_t n = parseCount(text);
+            const std::int64_t n =
+                parseCount(text, "--sizes", 1, kMaxParticles, kParticleLimitText);
             // Baseline: the plain solver on rank 0 alone.
             std::unique_ptr<Communicator> first = world->firstRanks(1);
             Timing one;

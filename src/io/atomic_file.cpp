@@ -1,6 +1,7 @@
 // writeFileAtomically: temporary file, stream checks, rename.
 #include "io/atomic_file.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -8,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 namespace weir {
 
@@ -60,6 +62,32 @@ void writeFileAtomically(const std::string& path,
     if (ec) {
         fail("cannot rename temporary '" + tmpPath + "' over it", ec.message());
     }
+}
+
+std::vector<std::string> removeStaleTemporaries(const std::string& dir) {
+    std::vector<std::string> removed;
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec)) {
+        return removed;
+    }
+    static const std::regex temporary(R"(.+\.tmp\.(\d+)(\..*)?)");
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        std::smatch match;
+        if (!entry.is_regular_file(ec) || !std::regex_match(name, match, temporary)) {
+            continue;
+        }
+        if (match[1].length() > 9) {
+            continue;  // not a process id
+        }
+        const long pid = std::stol(match[1]);
+        // A process that still runs (or that we may not signal) may still be writing it.
+        const bool alive = pid > 0 && (::kill(pid_t(pid), 0) == 0 || errno == EPERM);
+        if (!alive && std::filesystem::remove(entry.path(), ec)) {
+            removed.push_back(name);
+        }
+    }
+    return removed;
 }
 
 }  // namespace weir

@@ -4,6 +4,7 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "io/io_error.h"
 
@@ -15,5 +16,10 @@ namespace weir {
 // naming the path and the OS reason, an exception thrown by writeBody propagates unchanged.
 void writeFileAtomically(const std::string& path,
                          const std::function<void(std::ostream&)>& writeBody);
+
+// Removes the temporaries that writers killed mid-write left in `dir` (not its subfolders):
+// files named NAME.tmp.PID or NAME.tmp.PID.SUFFIX (writeFileAtomically's names, and the video's)
+// whose process PID no longer runs. Returns the names removed. A missing dir removes nothing.
+std::vector<std::string> removeStaleTemporaries(const std::string& dir);
 
 }  // namespace weir

@@ -2,6 +2,10 @@
 #include "io/atomic_file.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
 
 #include "io/io_test_support.h"
 
@@ -58,6 +62,38 @@ TEST(AtomicFile, FailedRenameThrowsIoErrorAndRemovesTemporary) {
         EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
     }
     EXPECT_EQ(dir.entries(), std::vector<std::string>{"target"});
+}
+
+// The pid of a process that has ended (a child, reaped).
+pid_t endedProcess() {
+    const pid_t child = ::fork();
+    if (child == 0) {
+        ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    return child;
+}
+
+TEST(AtomicFile, StaleTemporariesOfEndedProcessesAreRemovedOthersKept) {
+    TempDir dir;
+    const std::string dead = std::to_string(endedProcess());
+    const std::string alive = std::to_string(::getpid());
+    for (const std::string& name : std::vector<std::string>{
+             "frame_00003.vtu.tmp." + dead + ".0", "frames.json.tmp." + dead + ".7",
+             "video.tmp." + dead + ".mp4", "frame_00004.vtu.tmp." + alive + ".1", "frame_00001.vtu",
+             "notes.tmp.txt"}) {
+        test::writeText(dir / name, "x");
+    }
+    std::vector<std::string> removed = removeStaleTemporaries(dir.path().string());
+    std::sort(removed.begin(), removed.end());
+    EXPECT_EQ(removed, (std::vector<std::string>{"frame_00003.vtu.tmp." + dead + ".0",
+                                                 "frames.json.tmp." + dead + ".7",
+                                                 "video.tmp." + dead + ".mp4"}));
+    EXPECT_EQ(dir.entries(),
+              (std::vector<std::string>{"frame_00001.vtu", "frame_00004.vtu.tmp." + alive + ".1",
+                                        "notes.tmp.txt"}));
+    EXPECT_TRUE(removeStaleTemporaries(dir / "missing").empty());
 }
 
 }  // namespace

@@ -9,15 +9,24 @@ struct FieldEntry {
     const char* name;
     std::vector<std::string> componentNames;
     std::vector<std::vector<Real> HostParticles::*> members;
+    const char* unit;
+    const char* colourName;  // a scalar's own name, a vector's magnitude's; "" not colourable
+    FieldScale scale;
 };
 
-// The one place that lists the exported fields: add a row here and every writer picks it up.
+// The one place that lists the exported fields: add a row here and every writer picks it up,
+// and the renderer can colour by it (`--color NAME`, the `c` key of weir view).
 const std::vector<FieldEntry>& fieldTable() {
     using P = HostParticles;
     static const std::vector<FieldEntry> table = {
-        {"velocity", {"vx", "vy", "vz"}, {&P::vx, &P::vy, &P::vz}},
-        {"density", {"density"}, {&P::rho}},
-        {"pressure", {"pressure"}, {&P::p}},
+        {"velocity",
+         {"vx", "vy", "vz"},
+         {&P::vx, &P::vy, &P::vz},
+         "m/s",
+         "speed",
+         FieldScale::ExpectedSpeed},
+        {"density", {"density"}, {&P::rho}, "kg/m3", "density", FieldScale::RestDensity},
+        {"pressure", {"pressure"}, {&P::p}, "Pa", "pressure", FieldScale::Hydrostatic},
     };
     return table;
 }
@@ -45,6 +54,18 @@ std::vector<Array*> columnsOf(Particles& particles) {
 }
 
 }  // namespace
+
+const std::vector<FieldInfo>& particleFieldInfo() {
+    static const std::vector<FieldInfo> info = [] {
+        std::vector<FieldInfo> list;
+        for (const FieldEntry& entry : fieldTable()) {
+            list.push_back(
+                {entry.name, int(entry.members.size()), entry.unit, entry.colourName, entry.scale});
+        }
+        return list;
+    }();
+    return info;
+}
 
 std::vector<FieldDesc> particleFields(const HostParticles& particles) {
     return fieldsOf<const std::vector<Real>>(particles);

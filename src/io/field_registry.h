@@ -23,6 +23,24 @@ struct FieldDescT {
 using FieldDesc = FieldDescT<const std::vector<Real>>;
 using MutableFieldDesc = FieldDescT<std::vector<Real>>;
 
+// How a colour scale that stays put while a run goes is fixed for a field from the run's physics
+// (render/colour_map.h): from 0 to the expected speed, around the rest density, from 0 to the
+// hydrostatic pressure at the bottom of the deepest column, or (Data) from the values themselves.
+enum class FieldScale { Data, ExpectedSpeed, RestDensity, Hydrostatic };
+
+// What a field means beyond its arrays: its unit, and what the renderer colours it by, a scalar
+// field by its own name and a vector field by its magnitude under `colourName` ("speed").
+struct FieldInfo {
+    std::string name;
+    int components = 0;
+    std::string unit;        // SI, ASCII: "m/s", "kg/m3", "Pa"
+    std::string colourName;  // the colourable value's name; empty: not colourable
+    FieldScale scale = FieldScale::Data;
+};
+
+// The registry's fields, in the order particleFields lists them.
+const std::vector<FieldInfo>& particleFieldInfo();
+
 // "velocity" (vx, vy, vz), "density" (rho), "pressure" (p), in the order writers emit them.
 std::vector<FieldDesc> particleFields(const HostParticles& particles);
 // The same list with writable arrays, for readers.

@@ -6,14 +6,15 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "io/frame_reader.h"
+#include "io/frame_formats.h"
 
 namespace weir {
 
 namespace fs = std::filesystem;
 
-std::vector<FrameEntry> readFrameIndex(const std::string& dir) {
-    const std::string indexPath = (fs::path(dir) / "frames.json").string();
+namespace {
+
+nlohmann::json loadIndex(const std::string& dir, const std::string& indexPath) {
     if (!fs::is_directory(dir)) {
         throw IoError("frames directory '" + dir +
                       "' does not exist (give the output directory of "
@@ -30,6 +31,46 @@ std::vector<FrameEntry> readFrameIndex(const std::string& dir) {
     } catch (const nlohmann::json::exception& e) {
         throw IoError("cannot read '" + indexPath + "': not JSON (" + e.what() + ")");
     }
+    return index;
+}
+
+}  // namespace
+
+RunRecord readRunRecord(const std::string& dir) {
+    const std::string indexPath = (fs::path(dir) / "frames.json").string();
+    const nlohmann::json index = loadIndex(dir, indexPath);
+    RunRecord record;
+    if (!index.is_object()) {
+        return record;
+    }
+    const auto text = [&](const nlohmann::json& object, const char* key) {
+        return object.contains(key) && object[key].is_string() ? object[key].get<std::string>()
+                                                               : std::string();
+    };
+    if (index.contains("scene") && index["scene"].is_object()) {
+        const nlohmann::json& scene = index["scene"];
+        record.sceneName = text(scene, "name");
+        record.sceneSource = text(scene, "source");
+        if (scene.contains("definition") && scene["definition"].is_object()) {
+            record.sceneJson = scene["definition"].dump();
+        }
+    }
+    if (index.contains("spacing") && index["spacing"].is_number()) {
+        record.spacing = index["spacing"].get<double>();
+    }
+    if (index.contains("particles") && index["particles"].is_number_integer()) {
+        record.particles = index["particles"].get<std::int64_t>();
+    }
+    record.format = text(index, "format");
+    if (index.contains("frames") && index["frames"].is_array()) {
+        record.frames = index["frames"].size();
+    }
+    return record;
+}
+
+std::vector<FrameEntry> readFrameIndex(const std::string& dir) {
+    const std::string indexPath = (fs::path(dir) / "frames.json").string();
+    const nlohmann::json index = loadIndex(dir, indexPath);
     auto bad = [&](const std::string& field, const std::string& what) {
         return IoError("frames index '" + indexPath + "': field '" + field + "' " + what);
     };
@@ -63,18 +104,7 @@ std::vector<FrameEntry> readFrameIndex(const std::string& dir) {
 }
 
 HostParticles readFrameFile(const std::string& path) {
-    const std::string extension = fs::path(path).extension().string();
-    if (extension == ".vtu") {
-        return readVtu(path);
-    }
-    if (extension == ".ply") {
-        return readPly(path);
-    }
-    if (extension == ".csv") {
-        return readCsv(path);
-    }
-    throw IoError("cannot read '" + path + "': unknown frame format '" + extension +
-                  "' (allowed: .vtu, .ply, .csv)");
+    return frameFormatOfFile(path).entry().read(path, nullptr);
 }
 
 }  // namespace weir

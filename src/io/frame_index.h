@@ -2,6 +2,7 @@
 // extension: the input of `weir render` and `weir mesh`.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,23 @@ struct FrameEntry {
 // field when the index is missing, not JSON or malformed, or lists no frames.
 std::vector<FrameEntry> readFrameIndex(const std::string& dir);
 
-// Reads a .vtu, .ply or .csv frame; throws IoError naming the file for any other extension.
+// What frames.json records of the run besides its frames (`weir run` writes them; an index
+// written by another tool, or by weir before it recorded them, leaves them empty).
+struct RunRecord {
+    std::string sceneName;    // "dam_break"
+    std::string sceneSource;  // the scene file's path as given, or "<built-in NAME>"
+    std::string sceneJson;    // the scene as the run read it (JSON text)
+    double spacing = 0;       // the run's particle spacing d [m]; 0: not recorded
+    std::int64_t particles = 0;
+    std::string format;  // "vtu", ...
+    std::size_t frames = 0;
+};
+
+// The record in <dir>/frames.json; throws IoError as readFrameIndex does.
+RunRecord readRunRecord(const std::string& dir);
+
+// Reads a frame by its extension, through the format table (io/frame_formats.h); throws IoError
+// naming the file for an extension no format has.
 HostParticles readFrameFile(const std::string& path);
 
 }  // namespace weir

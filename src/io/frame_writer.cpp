@@ -1,4 +1,4 @@
-// FrameWriter and the frame format names.
+// FrameWriter: frame files through the format table, the .pvd series and frames.json.
 #include "io/frame_writer.h"
 
 #include <cstdio>
@@ -7,34 +7,10 @@
 #include <stdexcept>
 
 #include "io/atomic_file.h"
-#include "io/csv_writer.h"
-#include "io/ply_writer.h"
-#include "io/vtu_writer.h"
 
 namespace weir {
 
 namespace fs = std::filesystem;
-
-FrameFormat parseFrameFormat(const std::string& text) {
-    for (FrameFormat format : {FrameFormat::Vtu, FrameFormat::Ply, FrameFormat::Csv}) {
-        if (text == formatExtension(format)) {
-            return format;
-        }
-    }
-    throw std::invalid_argument("unknown frame format \"" + text + "\" (allowed: vtu, ply, csv)");
-}
-
-std::string formatExtension(FrameFormat format) {
-    switch (format) {
-        case FrameFormat::Vtu:
-            return "vtu";
-        case FrameFormat::Ply:
-            return "ply";
-        case FrameFormat::Csv:
-            return "csv";
-    }
-    throw std::invalid_argument("invalid FrameFormat value " + std::to_string(int(format)));
-}
 
 FrameWriter::FrameWriter(std::string dir, FrameFormat format, std::string baseName)
     : dir_(std::move(dir)), format_(format), baseName_(std::move(baseName)) {
@@ -44,7 +20,7 @@ FrameWriter::FrameWriter(std::string dir, FrameFormat format, std::string baseNa
         throw IoError("cannot create frame directory '" + dir_ +
                       "': " + (ec ? ec.message() : "a file of that name exists"));
     }
-    if (format_ == FrameFormat::Vtu) {
+    if (format_.entry().pvdSeries) {
         pvd_.emplace(dir_, baseName_);
     }
 }
@@ -66,17 +42,7 @@ void FrameWriter::write(int frameIndex, double time, const HostParticles& partic
         throw std::invalid_argument("frame index must be >= 0, got " + std::to_string(frameIndex));
     }
     const std::string path = framePath(frameIndex);
-    switch (format_) {
-        case FrameFormat::Vtu:
-            writeVtu(path, particles, time);
-            break;
-        case FrameFormat::Ply:
-            writePly(path, particles);
-            break;
-        case FrameFormat::Csv:
-            writeCsv(path, particles);
-            break;
-    }
+    format_.entry().write(path, particles, time);
     const std::string file = frameFileName(frameIndex);
     frames_[frameIndex] = {time, file};
     if (pvd_) {
@@ -90,8 +56,10 @@ void FrameWriter::writeIndex() const {
     for (const auto& [index, entry] : frames_) {
         frames.push_back({{"index", index}, {"time", entry.first}, {"file", entry.second}});
     }
-    const nlohmann::json index = {
-        {"format", formatExtension(format_)}, {"count", frames_.size()}, {"frames", frames}};
+    nlohmann::json index = record_;
+    index["format"] = formatExtension(format_);
+    index["count"] = frames_.size();
+    index["frames"] = frames;
     writeFileAtomically(indexPath(), [&](std::ostream& out) { out << index.dump(2) << '\n'; });
 }
 

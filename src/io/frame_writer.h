@@ -2,22 +2,16 @@
 #pragma once
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
+#include "io/frame_formats.h"
 #include "io/io_error.h"
 #include "io/pvd_writer.h"
 #include "solver/particles.h"
 
 namespace weir {
-
-enum class FrameFormat { Vtu, Ply, Csv };
-
-// "vtu", "ply" or "csv"; anything else throws std::invalid_argument naming the value and the
-// allowed list.
-FrameFormat parseFrameFormat(const std::string& text);
-// The file extension without the dot, also the format's name in frames.json: "vtu", "ply", "csv".
-std::string formatExtension(FrameFormat format);
 
 // Writes frame files <dir>/<baseName>_00000.<ext> (five digits, more when needed), each
 // atomically. After every frame it also rewrites, atomically, <dir>/frames.json:
@@ -37,6 +31,9 @@ class FrameWriter {
     const std::string& dir() const { return dir_; }
     FrameFormat format() const { return format_; }
     std::string indexPath() const;  // <dir>/frames.json
+    // Fields written into frames.json beside format, count and frames, from the next write on:
+    // what the run was (its scene, its spacing; io/frame_index.h reads them back).
+    void setRecord(nlohmann::json record) { record_ = std::move(record); }
 
    private:
     std::string frameFileName(int frameIndex) const;
@@ -47,6 +44,7 @@ class FrameWriter {
     std::string baseName_;
     std::optional<PvdCollection> pvd_;                      // vtu only
     std::map<int, std::pair<double, std::string>> frames_;  // index -> (time, file name)
+    nlohmann::json record_ = nlohmann::json::object();
 };
 
 }  // namespace weir

@@ -14,17 +14,47 @@ namespace weir {
 
 static_assert(std::endian::native == std::endian::little, "the PLY writer emits native bytes");
 
-MeshFormat parseMeshFormat(const std::string& text) {
-    if (text == "obj") {
-        return MeshFormat::Obj;
-    }
-    if (text == "ply") {
-        return MeshFormat::Ply;
-    }
-    throw std::invalid_argument("unknown mesh format '" + text + "': allowed are obj, ply");
+const std::vector<MeshFormatEntry>& meshFormatTable() {
+    // The one place that lists the mesh formats: `weir mesh --format` and `weir run
+    // --mesh-format` take a row added here.
+    static const std::vector<MeshFormatEntry> table = {
+        {"obj", "Wavefront OBJ text with normals", &writeObj},
+        {"ply", "binary PLY with normals", &writeMeshPly},
+    };
+    return table;
 }
 
-std::string meshExtension(MeshFormat format) { return format == MeshFormat::Obj ? "obj" : "ply"; }
+const MeshFormat MeshFormat::Obj = parseMeshFormat("obj");
+const MeshFormat MeshFormat::Ply = parseMeshFormat("ply");
+
+MeshFormat parseMeshFormat(const std::string& text) {
+    const auto& table = meshFormatTable();
+    for (std::size_t i = 0; i < table.size(); ++i) {
+        if (text == table[i].name) {
+            return MeshFormat(i);
+        }
+    }
+    throw std::invalid_argument("unknown mesh format '" + text + "': allowed are " +
+                                meshFormatList());
+}
+
+std::string meshExtension(MeshFormat format) { return format.entry().name; }
+
+std::string meshFormatList() {
+    std::string list;
+    for (const MeshFormatEntry& entry : meshFormatTable()) {
+        list += (list.empty() ? "" : ", ") + std::string(entry.name);
+    }
+    return list;
+}
+
+std::string meshFormatHelp() {
+    std::string help;
+    for (const MeshFormatEntry& entry : meshFormatTable()) {
+        help += (help.empty() ? "" : ", ") + std::string(entry.name) + " (" + entry.help + ")";
+    }
+    return "one or more of " + help + ", comma-separated";
+}
 
 void writeObj(const std::string& path, const TriangleMesh& mesh) {
     writeFileAtomically(path, [&](std::ostream& out) {
@@ -111,11 +141,7 @@ void writeMeshPly(const std::string& path, const TriangleMesh& mesh) {
 }
 
 void writeMesh(const std::string& path, MeshFormat format, const TriangleMesh& mesh) {
-    if (format == MeshFormat::Obj) {
-        writeObj(path, mesh);
-    } else {
-        writeMeshPly(path, mesh);
-    }
+    format.entry().write(path, mesh);
 }
 
 }  // namespace weir

@@ -1,19 +1,45 @@
 // Triangle-mesh files: Wavefront OBJ (text) and binary little-endian PLY, written atomically.
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "io/io_error.h"
 #include "surface/triangle_mesh.h"
 
 namespace weir {
 
-enum class MeshFormat { Obj, Ply };
+// The mesh formats as one table (mesh_writer.cpp): name (also the extension), help, writer.
+struct MeshFormatEntry {
+    const char* name;
+    const char* help;
+    void (*write)(const std::string& path, const TriangleMesh& mesh);
+};
+const std::vector<MeshFormatEntry>& meshFormatTable();
+
+// One entry of the table, with named constants for the formats code refers to.
+class MeshFormat {
+   public:
+    static const MeshFormat Obj, Ply;
+
+    const MeshFormatEntry& entry() const { return meshFormatTable()[index_]; }
+    friend bool operator==(MeshFormat a, MeshFormat b) { return a.index_ == b.index_; }
+
+   private:
+    friend MeshFormat parseMeshFormat(const std::string& text);
+    explicit MeshFormat(std::size_t index) : index_(index) {}
+    std::size_t index_;
+};
 
 // "obj" or "ply"; anything else throws std::invalid_argument naming the value and the allowed list.
 MeshFormat parseMeshFormat(const std::string& text);
 // The extension without the dot: "obj", "ply".
 std::string meshExtension(MeshFormat format);
+// "obj, ply".
+std::string meshFormatList();
+// For a --format option's help: "one or more of obj (...), ply (...), comma-separated".
+std::string meshFormatHelp();
 
 // `v x y z` and `vn nx ny nz` per vertex (shortest text that reads back to the same float), then
 // `f a//a b//b c//c` per triangle (1-based). Throws IoError when the file cannot be written.

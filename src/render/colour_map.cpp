@@ -39,73 +39,110 @@ Rgb viridis(double t) {
     return {a.r + (b.r - a.r) * f, a.g + (b.g - a.g) * f, a.b + (b.b - a.b) * f};
 }
 
+namespace {
+
+struct ColourEntry {
+    std::string name, unit;
+    FieldScale scale;
+    std::size_t field;
+    bool magnitude;
+};
+
+const std::vector<ColourEntry>& colourTable() {
+    static const std::vector<ColourEntry> table = [] {
+        std::vector<ColourEntry> list;
+        const std::vector<FieldInfo>& fields = particleFieldInfo();
+        for (std::size_t i = 0; i < fields.size(); ++i) {
+            if (!fields[i].colourName.empty()) {
+                list.push_back({fields[i].colourName, fields[i].unit, fields[i].scale, i,
+                                fields[i].components > 1});
+            }
+        }
+        return list;
+    }();
+    return table;
+}
+
+}  // namespace
+
+const ColourField ColourField::Speed = parseColourField("speed");
+const ColourField ColourField::Density = parseColourField("density");
+const ColourField ColourField::Pressure = parseColourField("pressure");
+
+const std::vector<ColourField>& ColourField::all() {
+    static const std::vector<ColourField> fields = [] {
+        std::vector<ColourField> list;
+        for (std::size_t i = 0; i < colourTable().size(); ++i) {
+            list.push_back(ColourField(i));
+        }
+        return list;
+    }();
+    return fields;
+}
+
+const std::string& ColourField::name() const { return colourTable()[index_].name; }
+const std::string& ColourField::unit() const { return colourTable()[index_].unit; }
+FieldScale ColourField::scale() const { return colourTable()[index_].scale; }
+std::size_t ColourField::fieldIndex() const { return colourTable()[index_].field; }
+bool ColourField::magnitude() const { return colourTable()[index_].magnitude; }
+
 ColourField parseColourField(const std::string& name) {
-    if (name == "speed") {
-        return ColourField::Speed;
-    }
-    if (name == "density") {
-        return ColourField::Density;
-    }
-    if (name == "pressure") {
-        return ColourField::Pressure;
+    for (std::size_t i = 0; i < colourTable().size(); ++i) {
+        if (colourTable()[i].name == name) {
+            return ColourField::all()[i];
+        }
     }
     throw std::invalid_argument("colour field '" + name +
-                                "' is not known; allowed: speed, density, pressure");
+                                "' is not known; allowed: " + colourFieldList());
 }
 
-const char* colourFieldName(ColourField field) {
-    switch (field) {
-        case ColourField::Speed:
-            return "speed";
-        case ColourField::Density:
-            return "density";
-        case ColourField::Pressure:
-            return "pressure";
-    }
-    return "?";
-}
+const char* colourFieldName(ColourField field) { return field.name().c_str(); }
 
-const char* colourFieldUnit(ColourField field) {
-    switch (field) {
-        case ColourField::Speed:
-            return "m/s";
-        case ColourField::Density:
-            return "kg/m3";
-        case ColourField::Pressure:
-            return "Pa";
-    }
-    return "";
-}
+const char* colourFieldUnit(ColourField field) { return field.unit().c_str(); }
 
 ColourField nextColourField(ColourField field) {
-    switch (field) {
-        case ColourField::Speed:
-            return ColourField::Density;
-        case ColourField::Density:
-            return ColourField::Pressure;
-        case ColourField::Pressure:
-            return ColourField::Speed;
+    const std::vector<ColourField>& all = ColourField::all();
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        if (all[i] == field) {
+            return all[(i + 1) % all.size()];
+        }
     }
-    return ColourField::Speed;
+    return all.front();
+}
+
+std::vector<std::string> colourFieldNames() {
+    std::vector<std::string> names;
+    for (const ColourEntry& entry : colourTable()) {
+        names.push_back(entry.name);
+    }
+    return names;
+}
+
+std::string colourFieldList() {
+    std::string list;
+    for (const ColourEntry& entry : colourTable()) {
+        list += (list.empty() ? "" : ", ") + entry.name;
+    }
+    return list;
 }
 
 std::vector<float> fieldValues(const HostParticles& particles, ColourField field) {
     const std::size_t n = particles.size();
+    const FieldDesc desc = particleFields(particles)[field.fieldIndex()];
     std::vector<float> values(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        switch (field) {
-            case ColourField::Speed: {
-                const double vx = particles.vx[i], vy = particles.vy[i], vz = particles.vz[i];
-                values[i] = float(std::sqrt(vx * vx + vy * vy + vz * vz));
-                break;
-            }
-            case ColourField::Density:
-                values[i] = float(particles.rho[i]);
-                break;
-            case ColourField::Pressure:
-                values[i] = float(particles.p[i]);
-                break;
+    if (!field.magnitude()) {
+        const std::vector<Real>& a = *desc.arrays[0];
+        for (std::size_t i = 0; i < n; ++i) {
+            values[i] = float(a[i]);
         }
+        return values;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        double sum = 0;
+        for (const std::vector<Real>* a : desc.arrays) {
+            sum += double((*a)[i]) * double((*a)[i]);
+        }
+        values[i] = float(std::sqrt(sum));
     }
     return values;
 }
@@ -117,13 +154,13 @@ double ValueRange::normalized(double value) const {
 ValueRange robustRange(const std::vector<float>& values, ColourField field) {
     ValueRange range{0, 0};
     if (!values.empty()) {
-        range.lo = field == ColourField::Speed ? 0.0 : quantile(values, 0.01);
+        range.lo = field.magnitude() ? 0.0 : quantile(values, 0.01);
         range.hi = quantile(values, 0.99);
     }
     if (!(range.hi > range.lo)) {
         const double pad = std::max(std::abs(range.lo) * 0.01, 1e-6);
         range.hi = range.lo + pad;
-        if (field != ColourField::Speed) {
+        if (!field.magnitude()) {
             range.lo -= pad;
         }
     }
@@ -135,16 +172,18 @@ ValueRange unite(const ValueRange& a, const ValueRange& b) {
 }
 
 ValueRange physicalRange(ColourField field, double restDensity, double expectedSpeed,
-                         double hydrostaticPressure) {
-    switch (field) {
-        case ColourField::Speed:
+                         double hydrostaticPressure, ValueRange data) {
+    switch (field.scale()) {
+        case FieldScale::ExpectedSpeed:
             return {0, std::max(expectedSpeed, 1e-6)};
-        case ColourField::Density:
+        case FieldScale::RestDensity:
             return {0.9 * restDensity, 1.05 * restDensity};
-        case ColourField::Pressure:
+        case FieldScale::Hydrostatic:
             return {0, std::max(hydrostaticPressure, 1e-6)};
+        case FieldScale::Data:
+            break;
     }
-    return {};
+    return data;
 }
 
 }  // namespace weir

@@ -13,6 +13,8 @@ namespace weir {
 
 namespace {
 
+constexpr int kDeviceSpeed = 0, kDeviceDensity = 1, kDevicePressure = 2;
+
 __global__ void fillParticleBuffers(const Real4* pos, const Real4* vel, Index n, SphParams params,
                                     int field, float* positions, float* values) {
     const Index i = Index(blockIdx.x) * Index(blockDim.x) + Index(threadIdx.x);
@@ -24,14 +26,29 @@ __global__ void fillParticleBuffers(const Real4* pos, const Real4* vel, Index n,
     positions[3 * i + 1] = float(p.y);
     positions[3 * i + 2] = float(p.z);
     float value = 0;
-    if (field == int(ColourField::Speed)) {
+    if (field == kDeviceSpeed) {
         value = float(sqrt(double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z));
-    } else if (field == int(ColourField::Density)) {
+    } else if (field == kDeviceDensity) {
         value = float(v.w);
     } else {
         value = float(pressureFromDensity(params, v.w));
     }
     values[i] = value;
+}
+
+// The colour fields the kernel computes from the solver's packed arrays; any other field of the
+// registry is drawn from a host copy.
+int deviceFieldCode(ColourField field) {
+    if (field == ColourField::Speed) {
+        return kDeviceSpeed;
+    }
+    if (field == ColourField::Density) {
+        return kDeviceDensity;
+    }
+    if (field == ColourField::Pressure) {
+        return kDevicePressure;
+    }
+    return -1;
 }
 
 class CudaParticleInterop : public ParticleInterop {
@@ -40,6 +57,12 @@ class CudaParticleInterop : public ParticleInterop {
     ~CudaParticleInterop() override { unregister(); }
 
     void update(Renderer& renderer, ColourField field, double radius) override {
+        const int code = deviceFieldCode(field);
+        if (code < 0) {
+            simulation_.download(host_);
+            renderer.setParticles(host_, field, radius);
+            return;
+        }
         const ParticleArrays arrays = simulation_.particleArrays();
         const Index n = arrays.count;
         const auto [positionBuffer, valueBuffer] = renderer.reserveParticleBuffers(std::size_t(n));
@@ -64,7 +87,7 @@ class CudaParticleInterop : public ParticleInterop {
         if (n > 0) {
             const int block = 256;
             fillParticleBuffers<<<unsigned((n + block - 1) / block), block>>>(
-                arrays.pos, arrays.vel, n, simulation_.params(), int(field), positions, values);
+                arrays.pos, arrays.vel, n, simulation_.params(), code, positions, values);
             WEIR_CUDA_CHECK(cudaGetLastError());
         }
         WEIR_CUDA_CHECK(cudaGraphicsUnmapResources(2, resources_, 0));
@@ -85,6 +108,7 @@ class CudaParticleInterop : public ParticleInterop {
     }
 
     Simulation& simulation_;
+    HostParticles host_;  // for fields the kernel does not compute
     cudaGraphicsResource* resources_[2] = {nullptr, nullptr};
     unsigned positionBuffer_ = 0, valueBuffer_ = 0;
     Index registered_ = -1;

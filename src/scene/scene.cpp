@@ -355,6 +355,7 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
                      "particles", "gravity", "time", "walls", "limits", "solver"});
     Scene scene;
     scene.sourcePath = source;
+    scene.json = root.dump();
     scene.name = top.string("name", defaultName);
     if (scene.name.empty()) {
         top.fail("name", "\"\"", "a non-empty string");
@@ -650,8 +651,31 @@ Scene builtinScene(const std::string& name) {
             return parseSceneNamed(text, "<built-in " + name + ">", name);
         }
     }
-    throw SceneError("unknown built-in scene '" + name +
-                     "', available: " + join(builtinSceneNames(), ", "));
+    throw SceneError("unknown built-in scene '" + name + "'" + didYouMeanBuiltinScene(name) +
+                     ", available: " + join(builtinSceneNames(), ", "));
+}
+
+std::string didYouMeanBuiltinScene(const std::string& name) {
+    // The nearest name by edit distance, if near enough to be a slip; else one that holds the
+    // name ("pool": drop_into_pool).
+    std::string best;
+    std::size_t bestDistance = std::max<std::size_t>(2, name.size() * 2 / 5) + 1;
+    for (const std::string& candidate : builtinSceneNames()) {
+        const std::size_t d = editDistance(name, candidate);
+        if (d < bestDistance) {
+            best = candidate;
+            bestDistance = d;
+        }
+    }
+    if (best.empty() && name.size() >= 3) {
+        for (const std::string& candidate : builtinSceneNames()) {
+            if (candidate.find(name) != std::string::npos) {
+                best = candidate;
+                break;
+            }
+        }
+    }
+    return best.empty() ? "" : " (did you mean '" + best + "'?)";
 }
 
 std::vector<std::string> builtinSceneNames() {

@@ -79,6 +79,7 @@ struct Scene {
     std::string name = "scene";  // "name", default: file stem
     std::string sourcePath;      // file it came from ("<built-in NAME>" for built-ins)
     std::string description;     // "description", free text, optional
+    std::string json;            // the scene as read, compact JSON (a run records it)
 
     Box container;                             // "container": {"min": [..], "max": [..]}, metres
     std::array<bool, 3> periodic{};            // "container.periodic": [x, y, z] (no walls there)
@@ -145,8 +146,11 @@ struct Scene {
 Scene loadScene(const std::string& path);
 // Same for JSON text already in memory; sourceName is used in messages.
 Scene parseScene(const std::string& jsonText, const std::string& sourceName);
-// The built-in scenes, by name ("dam_break", "double_dam_break", "drop_into_pool").
+// The built-in scenes (scenes/*.json, embedded), by name ("dam_break", ...). An unknown name
+// throws SceneError listing them, with a did-you-mean.
 Scene builtinScene(const std::string& name);
 std::vector<std::string> builtinSceneNames();
+// " (did you mean 'dam_break'?)" for a name close to a built-in scene's ("dambreak"), else "".
+std::string didYouMeanBuiltinScene(const std::string& name);
 
 }  // namespace weir

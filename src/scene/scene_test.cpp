@@ -204,7 +204,15 @@ TEST(Scene, UnknownBuiltinListsAvailableNames) {
         FAIL() << "no SceneError";
     } catch (const SceneError& e) {
         EXPECT_TRUE(contains(e.what(), "'dam_brake'"));
-        EXPECT_TRUE(contains(e.what(), "dam_break, double_dam_break, drop_into_pool"));
+        // Every built-in scene, in order (issue 20 added scenes to the three of this list).
+        std::string all;
+        for (const std::string& name : builtinSceneNames()) {
+            all += (all.empty() ? "" : ", ") + name;
+        }
+        EXPECT_TRUE(contains(e.what(), all));
+        EXPECT_TRUE(
+            contains(e.what(), "dam_break, dam_break_obstacle, double_dam_break, drop_into_pool"));
+        EXPECT_TRUE(contains(e.what(), "did you mean 'dam_break'?"));
     }
 }
 

@@ -1,9 +1,5 @@
 // `weir render` (frames directory in, one PNG per frame and optionally an MP4 out) and
 // `weir run --render`.
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,17 +8,17 @@
 #include <optional>
 #include <sstream>
 
+#include "cli/frame_selection.h"
 #include "cli/progress.h"
+#include "cli/render_commands.h"
+#include "cli/video.h"
 #include "core/backend.h"
 #include "io/frame_index.h"
 #include "render/egl_context.h"
 #include "render/gl.h"
-#include "render/render_commands.h"
 #include "render/renderer.h"
 #include "scene/setup.h"
 #include "surface/surface.h"
-
-extern char** environ;
 
 namespace weir {
 
@@ -39,77 +35,6 @@ std::string imageName(std::int64_t index) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05lld.png", static_cast<long long>(index));
     return name;
-}
-
-bool programOnPath(const std::string& program) {
-    const char* path = std::getenv("PATH");
-    std::stringstream dirs(path != nullptr ? path : "");
-    for (std::string dir; std::getline(dirs, dir, ':');) {
-        const fs::path candidate = fs::path(dir.empty() ? "." : dir) / program;
-        if (::access(candidate.c_str(), X_OK) == 0 && !fs::is_directory(candidate)) {
-            return true;
-        }
-    }
-    return false;
-}
-
-const char* kNoFfmpeg =
-    "--video needs ffmpeg on PATH (Debian/Ubuntu: apt-get install ffmpeg); nothing was rendered";
-
-// Encodes images <dir>/frame_<first..first+count-1>.png into an H.264 MP4 (yuv420p, so that
-// every player takes it), written to a temporary name and renamed.
-void encodeVideo(const std::string& imagesDir, int first, int count, double fps,
-                 const std::string& outFile) {
-    const fs::path out(outFile);
-    if (out.has_parent_path()) {
-        fs::create_directories(out.parent_path());
-    }
-    const std::string partial =
-        (out.parent_path() / (out.stem().string() + ".tmp." + std::to_string(::getpid()) + ".mp4"))
-            .string();
-    char rate[32];
-    std::snprintf(rate, sizeof rate, "%.6g", fps);
-    std::vector<std::string> args = {"ffmpeg",
-                                     "-hide_banner",
-                                     "-loglevel",
-                                     "error",
-                                     "-y",
-                                     "-framerate",
-                                     rate,
-                                     "-start_number",
-                                     std::to_string(first),
-                                     "-i",
-                                     (fs::path(imagesDir) / "frame_%05d.png").string(),
-                                     "-frames:v",
-                                     std::to_string(count),
-                                     "-vf",
-                                     "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                     "-c:v",
-                                     "libx264",
-                                     "-pix_fmt",
-                                     "yuv420p",
-                                     "-movflags",
-                                     "+faststart",
-                                     partial};
-    std::vector<char*> argv;
-    for (std::string& arg : args) {
-        argv.push_back(arg.data());
-    }
-    argv.push_back(nullptr);
-    pid_t pid = 0;
-    if (posix_spawnp(&pid, "ffmpeg", nullptr, nullptr, argv.data(), environ) != 0) {
-        throw IoError(kNoFfmpeg);
-    }
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        std::error_code ignored;
-        fs::remove(partial, ignored);
-        throw IoError("ffmpeg could not make '" + outFile + "' from the images in '" + imagesDir +
-                      "' (see its message above)");
-    }
-    fs::rename(partial, outFile);
 }
 
 // The container of the particles of all frames, padded by a particle radius, where no scene says.
@@ -249,14 +174,18 @@ class RunRenderer : public RunObserver {
     std::string imagesDir_;
 };
 
-// The lattice spacing the frames were seeded at: --spacing; else, with a scene, the spacing at
+// The lattice spacing the frames were seeded at: --spacing; else the run's, as frames.json
+// records it; else, with a scene, the spacing at
 // which the scene seeds exactly the frames' particle count (its own resolution, or the count as
 // `weir run --particles` gives it); else the median nearest-neighbour distance in the first frame
 // (right for frame 0, a little short for a moving fluid).
-double particleSpacing(const RenderOptions& options, const std::optional<Scene>& scene,
-                       const HostParticles& first) {
+double particleSpacing(const RenderOptions& options, const RunRecord& record,
+                       const std::optional<Scene>& scene, const HostParticles& first) {
     if (options.spacing > 0) {
         return options.spacing;
+    }
+    if (record.spacing > 0) {
+        return record.spacing;
     }
     if (scene) {
         for (bool byCount : {false, true}) {
@@ -293,21 +222,31 @@ int renderCommand(const RenderOptions& options) {
         }
         const ColourField field = parseColourField(options.color);
         if (!options.video.empty()) {
-            if (fs::path(options.video).extension() != ".mp4") {
-                throw std::invalid_argument("--video '" + options.video +
-                                            "': the file name must end in .mp4");
-            }
-            if (!programOnPath("ffmpeg")) {
-                throw IoError(kNoFfmpeg);
-            }
+            checkVideoOutput("--video", options.video);
         }
-        const std::vector<FrameEntry> frames = readFrameIndex(options.framesDir);
+        const std::vector<FrameEntry> frames = selectFrames(
+            readFrameIndex(options.framesDir), options.frame, options.frames, options.framesDir);
+        const RunRecord record = readRunRecord(options.framesDir);
         const std::string imagesDir = options.outDir.empty()
                                           ? (fs::path(options.framesDir) / "images").string()
                                           : options.outDir;
         std::optional<Scene> scene;
+        std::string sceneFrom;
         if (!options.scene.empty()) {
             scene = resolveScene(options.scene);
+            sceneFrom = "scene " + scene->name + " (--scene)";
+        } else if (!record.sceneJson.empty()) {
+            try {
+                scene = parseScene(record.sceneJson, record.sceneSource);
+                sceneFrom = "scene " + scene->name + " (from frames.json)";
+            } catch (const std::exception& e) {
+                std::cerr << "weir: warning: the scene recorded in frames.json does not load ("
+                          << e.what() << "); drawing a box around the particles (--scene SCENE "
+                          << "draws a scene's container and obstacles)\n";
+            }
+        }
+        if (!scene) {
+            sceneFrom = "no scene: a box around the particles";
         }
 
         // A first pass over the frames fixes what must not change between images: the colour
@@ -315,7 +254,7 @@ int renderCommand(const RenderOptions& options) {
         // box the camera frames.
         const auto start = Clock::now();
         const HostParticles first = readFrameFile(frames.front().path);
-        const double radius = 0.5 * particleSpacing(options, scene, first);
+        const double radius = 0.5 * particleSpacing(options, record, scene, first);
         ValueRange range = robustRange(fieldValues(first, field), field);
         Box bounds{{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
         bounds = particleBounds(first, bounds, radius);
@@ -341,17 +280,17 @@ int renderCommand(const RenderOptions& options) {
         imager.setColourRange(range);
         imager.setRadius(radius);
         if (!options.quiet) {
-            std::cerr << "weir: rendering " << frames.size() << " frames of " << options.framesDir
-                      << " to " << imagesDir << "/ (" << options.width << "x" << options.height
-                      << ", ";
+            std::cerr << "weir: rendering " << frames.size() << " frame"
+                      << (frames.size() == 1 ? "" : "s") << " of " << options.framesDir << " to "
+                      << imagesDir << "/ (" << options.width << "x" << options.height << ", ";
             if (options.surface) {
                 std::cerr << "surface";
             } else {
-                std::cerr << colourFieldName(field) << " " << range.lo << ".." << range.hi << " "
-                          << colourFieldUnit(field);
+                std::cerr << colourFieldName(field) << " " << rounded(range.lo, 3) << ".."
+                          << rounded(range.hi, 3) << " " << colourFieldUnit(field);
             }
-            std::cerr << ", particle spacing " << 2 * radius << " m; "
-                      << imager.contextDescription() << ")\n";
+            std::cerr << ", particle spacing " << rounded(2 * radius, 3) << " m, " << sceneFrom
+                      << "; " << imager.contextDescription() << ")\n";
         }
         ItemProgress progress("render", frames.size(), options.quiet);
         for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -359,8 +298,9 @@ int renderCommand(const RenderOptions& options) {
             progress.update(i + 1);
         }
         progress.finish();
-        std::cerr << "weir: " << frames.size() << " images in " << imagesDir << "/, "
-                  << imager.timing() << ", " << formatDuration(secondsSince(start)) << " in all\n";
+        std::cerr << "weir: " << frames.size() << " image" << (frames.size() == 1 ? "" : "s")
+                  << " in " << imagesDir << "/, " << imager.timing() << ", "
+                  << formatDuration(secondsSince(start)) << " in all\n";
 
         if (!options.video.empty()) {
             const bool contiguous =
@@ -374,8 +314,9 @@ int renderCommand(const RenderOptions& options) {
                                               double(frames.back().index - frames.front().index)
                                         : 0;
             const double fps = interval > 0 ? 1.0 / interval : 30.0;
-            encodeVideo(imagesDir, frames.front().index, int(frames.size()), fps, options.video);
-            std::cerr << "weir: video " << options.video << " (H.264, " << fps << " frames/s)\n";
+            encodeImages(imagesDir, frames.front().index, int(frames.size()), fps, options.video);
+            std::cerr << "weir: video " << options.video << " (H.264, " << rounded(fps, 3)
+                      << " frames/s)\n";
         }
         return kExitOk;
     } catch (...) {

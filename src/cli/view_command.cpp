@@ -17,9 +17,10 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include "cli/render_commands.h"
+#include "cli/video.h"
 #include "render/particle_interop.h"
 #include "render/png_image.h"
-#include "render/render_commands.h"
 #include "render/renderer.h"
 #include "scene/setup.h"
 #include "surface/surface.h"
@@ -29,6 +30,9 @@ namespace weir {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The frame rate of --record's video: one drawn frame per video frame.
+constexpr int kRecordFps = 30;
 
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
@@ -167,6 +171,13 @@ class Viewer {
                   << "\n"
                   << "weir: keys: space pause, s step, r reset, c colour, m particles/surface, "
                      "f frame, q quit; mouse: left orbit, right pan, wheel zoom\n";
+        if (!options_.record.empty()) {
+            int w = 0, h = 0;
+            glfwGetFramebufferSize(window_, &w, &h);
+            recorder_ = std::make_unique<VideoRecorder>(options_.record, w, h, kRecordFps);
+            std::cerr << "weir: recording every frame drawn to " << options_.record << " (" << w
+                      << "x" << h << ", " << kRecordFps << " frames/s)\n";
+        }
         const auto start = Clock::now();
         while (!glfwWindowShouldClose(window_)) {
             if (drawn_ < std::int64_t(pressed.size()) && pressed[std::size_t(drawn_)] != 0) {
@@ -176,6 +187,7 @@ class Viewer {
                 simulate(stepsPerDraw_);
             }
             draw();
+            record();
             glfwSwapBuffers(window_);
             frameTimes_.push_back(Clock::now());
             while (frameTimes_.size() > 31) {
@@ -188,6 +200,11 @@ class Viewer {
             }
         }
         const double seconds = secondsSince(start);
+        if (recorder_) {
+            recorder_->finish();
+            std::cerr << "weir: video " << options_.record << ": " << recorder_->frames()
+                      << " frames (H.264, " << kRecordFps << " frames/s)\n";
+        }
         std::cerr << "weir: view closed after " << drawn_ << " frames in " << fixed(seconds, 1)
                   << " s (" << fixed(seconds > 0 ? double(drawn_) / seconds : 0, 1)
                   << " frames/s); last lines: " << statsLine() << "; " << stagesLine() << "\n";
@@ -340,6 +357,32 @@ class Viewer {
         }
     }
 
+    // With --record: the frame just drawn to the video, at the size the recording started with
+    // (a resized window is cropped or padded with black).
+    void record() {
+        if (!recorder_) {
+            return;
+        }
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(window_, &w, &h);
+        if (w <= 0 || h <= 0) {
+            return;  // minimised: nothing drawn
+        }
+        const Image image = readWindow(w, h);
+        const int rw = recorder_->width(), rh = recorder_->height();
+        if (w == rw && h == rh) {
+            recorder_->add(image.rgb);
+            return;
+        }
+        std::vector<std::uint8_t> frame(std::size_t(rw) * std::size_t(rh) * 3, 0);
+        for (int y = 0; y < std::min(h, rh); ++y) {
+            std::copy_n(&image.rgb[std::size_t(y) * std::size_t(w) * 3],
+                        std::size_t(std::min(w, rw)) * 3,
+                        &frame[std::size_t(y) * std::size_t(rw) * 3]);
+        }
+        recorder_->add(frame);
+    }
+
     // The window's back buffer as an image (before the swap).
     static Image readWindow(int w, int h) {
         std::vector<std::uint8_t> rgba(std::size_t(w) * std::size_t(h) * 4);
@@ -452,6 +495,7 @@ class Viewer {
     std::unique_ptr<Renderer> renderer_;
     std::unique_ptr<Simulation> sim_;
     std::unique_ptr<ParticleInterop> interop_;  // null: particles copied through the host
+    std::unique_ptr<VideoRecorder> recorder_;   // --record
     std::string interopWhy_;                    // why there is no interop
     SetupReport report_;
     HostParticles host_;
@@ -485,6 +529,9 @@ int viewCommand(const ViewOptions& options) {
         parseKeys(options.press);
         if (!options.screenshot.empty() && options.maxFrames <= 0) {
             throw std::invalid_argument("--screenshot needs --max-frames: it saves the last frame");
+        }
+        if (!options.record.empty()) {
+            checkVideoOutput("--record", options.record);  // before a window opens
         }
         Viewer viewer(options, resolveScene(options.scene));
         struct Closer {

@@ -95,5 +95,38 @@ TEST_F(ViewCli, BadOptionsAreRefused) {
     }
 }
 
+TEST_F(ViewCli, RecordsEveryFrameDrawnIntoAVideo) {
+    if (!onPath("xvfb-run") || !onPath("ffmpeg")) {
+        GTEST_SKIP() << "needs xvfb-run and ffmpeg (Debian: apt-get install xvfb xauth ffmpeg)";
+    }
+    writeFile("tiny.json", kTinyDrawScene);
+    const RunResult view = viewUnderXvfb(
+        "tiny.json --backend cpu --width 160 --height 100 --max-frames 6 --record films/v.mp4");
+    ASSERT_EQ(view.exitCode, 0) << view.output;
+    EXPECT_TRUE(contains(view.output, "video films/v.mp4: 6 frames"));
+    EXPECT_EQ(entries(dir_ / "films"), std::vector<std::string>{"v.mp4"});  // no temporary left
+    const std::string video = fileText(dir_ / "films/v.mp4");
+    ASSERT_GT(video.size(), 500u);
+    EXPECT_EQ(video.substr(4, 4), "ftyp");
+    const RunResult probe = shell(
+        "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+        "stream=width,height,nb_read_frames -of csv=p=0 films/v.mp4");
+    if (probe.exitCode == 0) {
+        EXPECT_TRUE(contains(probe.output, "160,100,6")) << probe.output;
+    }
+}
+
+TEST_F(ViewCli, RecordFailsClearlyWithoutFfmpegBeforeAnyWindow) {
+    writeFile("tiny.json", kTinyDrawScene);
+    const RunResult noFfmpeg = shell("env PATH=/nonexistent " + quoted(WEIR_BINARY) +
+                                     " view tiny.json --backend cpu --record v.mp4");
+    EXPECT_EQ(noFfmpeg.exitCode, 1) << noFfmpeg.output;
+    EXPECT_TRUE(contains(noFfmpeg.output, "--record needs ffmpeg on PATH"));
+    EXPECT_FALSE(contains(noFfmpeg.output, "cannot open a window")) << noFfmpeg.output;
+    const RunResult extension = weir("view tiny.json --record v.avi");
+    EXPECT_EQ(extension.exitCode, 2) << extension.output;
+    EXPECT_TRUE(contains(extension.output, "--record 'v.avi': the file name must end in .mp4"));
+}
+
 }  // namespace
 }  // namespace weir

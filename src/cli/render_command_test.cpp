@@ -300,5 +300,69 @@ TEST_F(RenderCli, BadInputIsRefusedWithTheValue) {
     }
 }
 
+// --- the artists' loop (issue 20) ---------------------------------------------------------
+
+TEST_F(RenderCli, RenderNeedsNoSceneAsFramesJsonRecordsIt) {
+    writeFile("tiny.json", kTinyDrawScene);
+    ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 2 --out frames").exitCode, 0);
+    const RunResult recorded =
+        weir("render frames --width 96 --height 64 --samples 1 --quiet --out recorded");
+    ASSERT_EQ(recorded.exitCode, 0) << recorded.output;
+    const RunResult given =
+        weir("render frames --width 96 --height 64 --samples 1 --scene tiny.json --out given");
+    ASSERT_EQ(given.exitCode, 0) << given.output;
+    EXPECT_TRUE(contains(given.output, "scene tiny (--scene)"));
+    // The same container, camera and spacing: the same pictures.
+    for (const char* image : {"frame_00000.png", "frame_00002.png"}) {
+        EXPECT_EQ(fileText(dir_ / "recorded" / image), fileText(dir_ / "given" / image)) << image;
+    }
+    const RunResult loud = weir("render frames --width 96 --height 64 --samples 1 --out loud");
+    ASSERT_EQ(loud.exitCode, 0) << loud.output;
+    EXPECT_TRUE(contains(loud.output, "scene tiny (from frames.json)"));
+    EXPECT_TRUE(contains(loud.output, "particle spacing 0.02 m"));
+
+    // --scene still overrides: another container frames the camera differently.
+    std::string wide = kTinyDrawScene;
+    wide.replace(wide.find("[0.3, 0.2, 0.08]"), 16, "[0.6, 0.4, 0.16]");
+    writeFile("wide.json", wide);
+    const RunResult other = weir(
+        "render frames --width 96 --height 64 --samples 1 --quiet --scene wide.json --out wide");
+    ASSERT_EQ(other.exitCode, 0) << other.output;
+    EXPECT_NE(fileText(dir_ / "wide/frame_00000.png"), fileText(dir_ / "given/frame_00000.png"));
+}
+
+TEST_F(RenderCli, RenderAndMeshTakeOneFrameOrARange) {
+    writeFile("tiny.json", kTinyDrawScene);
+    ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 3 --out frames").exitCode, 0);
+    const RunResult one = weir("render frames --width 64 --height 48 --samples 1 --frame 2");
+    ASSERT_EQ(one.exitCode, 0) << one.output;
+    EXPECT_EQ(entries(dir_ / "frames/images"), std::vector<std::string>{"frame_00002.png"});
+    const RunResult range =
+        weir("render frames --width 64 --height 48 --samples 1 --frames 1:2 --out range");
+    ASSERT_EQ(range.exitCode, 0) << range.output;
+    EXPECT_EQ(entries(dir_ / "range"),
+              (std::vector<std::string>{"frame_00001.png", "frame_00002.png"}));
+    const RunResult tail = weir("mesh frames --format obj --frames 2:");
+    ASSERT_EQ(tail.exitCode, 0) << tail.output;
+    EXPECT_EQ(entries(dir_ / "frames/mesh"),
+              (std::vector<std::string>{"surface_00002.obj", "surface_00003.obj"}));
+    const RunResult head = weir("mesh frames --format ply --frame 0 --out head");
+    ASSERT_EQ(head.exitCode, 0) << head.output;
+    EXPECT_EQ(entries(dir_ / "head"), std::vector<std::string>{"surface_00000.ply"});
+
+    const RunResult none = weir("render frames --frames 5:9");
+    EXPECT_EQ(none.exitCode, 2) << none.output;
+    EXPECT_TRUE(contains(none.output, "--frames 5:9 selects no frame"));
+    EXPECT_TRUE(contains(none.output, "frames 0 to 3"));
+    const RunResult malformed = weir("mesh frames --frames 2-3");
+    EXPECT_EQ(malformed.exitCode, 2) << malformed.output;
+    EXPECT_TRUE(contains(malformed.output, "--frames 2-3: write A:B"));
+    const RunResult both = weir("render frames --frame 1 --frames 1:2");
+    EXPECT_EQ(both.exitCode, 2) << both.output;
+    const RunResult backwards = weir("mesh frames --frames 3:1");
+    EXPECT_EQ(backwards.exitCode, 2) << backwards.output;
+    EXPECT_TRUE(contains(backwards.output, "after the last"));
+}
+
 }  // namespace
 }  // namespace weir

@@ -1,5 +1,5 @@
 // The point-sprite timing of weir bench: upload, draw and wait, median of repeated frames.
-#include "render/sprite_timer.h"
+#include "cli/sprite_timer.h"
 
 #include <algorithm>
 #include <chrono>
