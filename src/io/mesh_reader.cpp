@@ -1,13 +1,17 @@
 // OBJ by lines; PLY by its header, then raw little-endian records.
 #include "io/mesh_reader.h"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
+
+#include "io/io_util.h"
 
 namespace weir {
 
@@ -78,8 +82,16 @@ TriangleMesh readObj(const std::string& path) {
         const std::string where = "line " + std::to_string(lineNumber);
         if (tag == "v" || tag == "vn") {
             Vec3f v;
-            if (!(words >> v.x >> v.y >> v.z)) {
-                throw badFile(path, where + ": '" + tag + "' needs three numbers");
+            for (int k = 0; k < 3; ++k) {
+                std::string word;
+                if (!(words >> word)) {
+                    throw badFile(path, where + ": '" + tag + "' needs three numbers");
+                }
+                if (!parseNumber(word, v[k]) || !std::isfinite(v[k])) {
+                    throw badFile(path, where + ": '" + tag + "' component " +
+                                            std::to_string(k + 1) + " '" + word +
+                                            "' is not a finite float");
+                }
             }
             (tag == "v" ? mesh.positions : mesh.normals).push_back(v);
         } else if (tag == "f") {
@@ -144,7 +156,8 @@ TriangleMesh readMeshPly(const std::string& path) {
             binaryLittle = format == "binary_little_endian";
         } else if (keyword == "element") {
             Element e;
-            if (!(words >> e.name >> e.count)) {
+            std::string count;
+            if (!(words >> e.name >> count) || !parseNumber(count, e.count)) {
                 throw badFile(path, "header line '" + line + "' is not 'element NAME COUNT'");
             }
             elements.push_back(e);
@@ -196,6 +209,25 @@ TriangleMesh readMeshPly(const std::string& path) {
         return (long long)value;
     };
 
+    // Every element's records take at least a byte each: a count past the bytes left is refused
+    // before anything is allocated.
+    const std::streamoff bodyStart = in.tellg();
+    in.seekg(0, std::ios::end);
+    const std::size_t bodyBytes = std::size_t(in.tellg() - bodyStart);
+    in.seekg(bodyStart);
+    std::size_t leastBytes = 0;
+    for (const Element& element : elements) {
+        std::size_t least = 0;
+        for (const Property& p : element.properties) {
+            least += p.countType.empty() ? typeSize(p.type) : typeSize(p.countType);
+        }
+        if (element.count > bodyBytes || (least > 0 && element.count > bodyBytes / least) ||
+            (leastBytes += std::max<std::size_t>(least, 1) * element.count) > bodyBytes) {
+            throw badFile(path, "element '" + element.name + "' claims " +
+                                    std::to_string(element.count) + " records, more than the " +
+                                    std::to_string(bodyBytes) + " bytes after the header hold");
+        }
+    }
     TriangleMesh mesh;
     for (const Element& element : elements) {
         if (element.name == "vertex") {
@@ -236,6 +268,13 @@ TriangleMesh readMeshPly(const std::string& path) {
                     std::memcpy(&mesh.positions[i][k], record.data() + at[k], 4);
                     if (normals) {
                         std::memcpy(&mesh.normals[i][k], record.data() + at[k + 3], 4);
+                    }
+                    const int bad = !std::isfinite(mesh.positions[i][k])             ? k
+                                    : normals && !std::isfinite(mesh.normals[i][k]) ? k + 3
+                                                                                     : -1;
+                    if (bad >= 0) {
+                        throw badFile(path, "vertex " + std::to_string(i) + " property '" +
+                                                names[bad] + "' is not a finite float");
                     }
                 }
             }

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "io/mesh_writer.h"
 
@@ -102,6 +103,40 @@ TEST_F(MeshFiles, MalformedFilesNameTheFileAndTheFault) {
     EXPECT_NE(message("missing.obj").find("missing.obj"), std::string::npos);
     write("mesh.stl", "solid");
     EXPECT_NE(message("mesh.stl").find("allowed: .obj, .ply"), std::string::npos);
+}
+
+TEST_F(MeshFiles, NonFiniteVerticesAndCountsPastTheFileAreRefused) {
+    auto message = [&](const std::string& name) {
+        try {
+            readMesh(path(name));
+        } catch (const IoError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    write("nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_NE(message("nan.obj").find("line 2: 'v' component 2 'nan'"), std::string::npos)
+        << message("nan.obj");
+    write("huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 1e39\nf 1 2 3\n");
+    EXPECT_NE(message("huge.obj").find("'1e39' is not a finite float"), std::string::npos)
+        << message("huge.obj");
+    // A binary PLY whose first vertex's y is NaN, and one claiming 4e9 vertices in a few bytes.
+    TriangleMesh mesh = tetrahedron();
+    mesh.positions[0].y = std::numeric_limits<float>::quiet_NaN();
+    writeMeshPly(path("nan.ply"), mesh);
+    EXPECT_NE(message("nan.ply").find("vertex 0 property 'y' is not a finite float"),
+              std::string::npos)
+        << message("nan.ply");
+    write("many.ply",
+          "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
+          "property float y\nproperty float z\nend_header\n0123456789ab");
+    EXPECT_NE(message("many.ply").find("claims 4000000000 records"), std::string::npos)
+        << message("many.ply");
+    write("negative.ply",
+          "ply\nformat binary_little_endian 1.0\nelement vertex -1\nproperty float x\n"
+          "end_header\n");
+    EXPECT_NE(message("negative.ply").find("is not 'element NAME COUNT'"), std::string::npos)
+        << message("negative.ply");
 }
 
 }  // namespace
