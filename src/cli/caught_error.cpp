@@ -1,6 +1,7 @@
 // The one place where a command turns the exception it caught into a message and an exit code.
 #include <exception>
 #include <iostream>
+#include <new>
 #include <stdexcept>
 
 #include "cli/commands.h"
@@ -13,6 +14,12 @@ CaughtError caughtError() {
         throw;
     } catch (const std::invalid_argument& e) {
         return {e.what(), kExitUsage};
+    } catch (const std::bad_alloc&) {
+        return {"out of memory: an allocation failed (std::bad_alloc), most likely the particles "
+                "or the frames of a run too large for this machine; try fewer particles "
+                "(--particles, particles.count), a larger particles.spacing, a smaller container, "
+                "or close other programs",
+                kExitError};
     } catch (const std::exception& e) {
         return {e.what(), kExitError};
     } catch (...) {

@@ -11,12 +11,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
 #include <vector>
 
 #include "cli/cli_test_support.h"
+#include "cli/commands.h"
 #include "io/frame_reader.h"
 
 namespace weir {
@@ -106,6 +108,21 @@ TEST_F(Cli, HelpListsTheSubcommandsAndOptions) {
         EXPECT_TRUE(contains(run.output, option));
     }
     EXPECT_TRUE(entries(dir_).empty());  // help writes nothing
+}
+
+// Running out of memory is an error of the run (exit 1) that says what ran out and what to try,
+// not the bare "std::bad_alloc".
+TEST(CliErrors, OutOfMemorySaysWhatRanOutAndWhatToTry) {
+    CaughtError error{"", 0};
+    try {
+        throw std::bad_alloc();
+    } catch (...) {
+        error = caughtError();
+    }
+    EXPECT_EQ(error.exitCode, kExitError);
+    EXPECT_TRUE(contains(error.what, "out of memory")) << error.what;
+    EXPECT_TRUE(contains(error.what, "--particles")) << error.what;
+    EXPECT_TRUE(contains(error.what, "particles.spacing")) << error.what;
 }
 
 TEST_F(Cli, UsageErrorsExitWith2) {

@@ -101,9 +101,10 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         setupOptions.particleCount = options.particles;
         // Distributed: each rank seeds only its slab, on its backend (no rank holds them all).
         setupOptions.seedOnDevice = launchedByMpi();
+        const Backend backend = parseBackend(options.backend);
+        setupOptions.backend = backend;  // a CPU run's particles must fit host memory twice over
         SetupReport report;
         SimulationSetup setup = buildSetup(scene, setupOptions, &report);
-        const Backend backend = parseBackend(options.backend);
         const NeighbourMode mode = resolveNeighbourMode(parseNeighbourMode(options.neighbours),
                                                         setup.grid, setup.particleCount());
         const FrameFormat format = parseFrameFormat(options.format);

@@ -58,8 +58,9 @@ struct GridSpec {
     // Cell of a position, clamped into the grid (positions on the far wall land in the last cell).
     WEIR_HD CellCoord cellOf(Real px, Real py, Real pz) const {
         auto axis = [&](Real p, Real o, int dim) {
-            int c = int(std::floor((p - o) * inverseCellSize));
-            return c < 0 ? 0 : (c >= dim ? dim - 1 : c);
+            // Compared as a Real first: a huge or NaN position (a blow-up) must not reach int.
+            const Real c = std::floor((p - o) * inverseCellSize);
+            return c >= Real(dim) ? dim - 1 : (c >= Real(0) ? int(c) : 0);
         };
         return {axis(px, origin.x, dims[0]), axis(py, origin.y, dims[1]),
                 axis(pz, origin.z, dims[2])};

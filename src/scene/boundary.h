@@ -10,7 +10,8 @@
 
 namespace weir {
 
-// Samples the walls and obstacles at spacing d: the container's faces d/2 outside its walls and
+// Samples the walls and obstacles at spacing d (only within 2 h and the layers of the container:
+// an obstacle that sticks out is sampled where fluid can feel it): the container's faces d/2 outside its walls and
 // each obstacle's surface d/2 inside it, so that the first fluid layer (seeded d/2 from a wall)
 // sits one spacing from the boundary layer, as in the fluid lattice; and further layers d apart
 // as far as a fluid particle at the wall can see (boundaryLayers: 1 at h = 2d, 2 at h = 3d).
@@ -30,6 +31,10 @@ struct BoundarySamples {
     std::size_t size() const { return points.size(); }
 };
 BoundarySamples sampleBoundary(const Scene& scene, double d, double h, int layers);
+// An upper bound on the points sampleBoundary visits (before close ones are dropped), in closed
+// form per box and sphere and one step per row of each mesh triangle: memory can be checked
+// before sampling. Throws SceneError for a mesh triangle too large to sample (naming the mesh).
+double boundarySampleBound(const Scene& scene, double d, double h, int layers);
 
 // The kernel whose sums give Akinci's volumes: the paper model's poly6 or delta-SPH's Wendland.
 enum class BoundaryKernel { Poly6, Wendland };
@@ -50,7 +55,10 @@ BoundaryParticles buildBoundary(const BoundarySamples& samples, const Box& conta
                                 double restDensity, double fullVolume, BoundaryKernel kernel,
                                 const std::array<Vec3d, 6>* faceVelocity = nullptr);
 
-// Whether p lies inside the closed triangle mesh (ray parity along +x).
+// Whether p lies inside the closed triangle mesh (ray parity along +x); through mesh.index when
+// it is built (only the triangles under the ray are tested), else every triangle.
 bool insideMesh(const MeshObstacle& mesh, const Vec3d& p);
+// Builds mesh.index (once per mesh: the scene reader does it, and copies share it).
+void buildMeshIndex(MeshObstacle& mesh);
 
 }  // namespace weir

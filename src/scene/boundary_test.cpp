@@ -4,11 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <random>
 
+#include "grid/cell_id.h"
 #include "scene/mesh_file.h"
 #include "scene/setup.h"
 #include "solver/simulation.h"
@@ -197,6 +202,158 @@ TEST(Boundary, MeshObstaclesFromObjAndStl) {
         EXPECT_NE(std::string(e.what()).find("walls.model"), std::string::npos) << e.what();
     }
     fs::remove_all(dir);
+}
+
+// A blown-up particle (huge or NaN position) lands in a cell of the grid: no float-to-int
+// conversion out of range (undefined behaviour) on the way.
+TEST(Boundary, CellOfHugeAndNaNPositionsIsClamped) {
+    const GridSpec grid = makeGridSpec(Vec3d(0, 0, 0), Vec3d(1, 1, 1), 0.1, 1 << 20);
+    const Real huge = Real(1e30), nan = std::numeric_limits<Real>::quiet_NaN();
+    const CellCoord far = grid.cellOf(huge, -huge, huge);
+    EXPECT_EQ(far.x, grid.dims[0] - 1);
+    EXPECT_EQ(far.y, 0);
+    EXPECT_EQ(far.z, grid.dims[2] - 1);
+    const CellCoord lost = grid.cellOf(nan, nan, nan);
+    EXPECT_EQ(lost.x, 0);
+    EXPECT_EQ(lost.y, 0);
+    EXPECT_EQ(lost.z, 0);
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// An obstacle sticking far out of the container (1000 m up) is sampled only where the fluid can
+// feel it: the set-up takes well under 2 s (it took minutes), and no boundary particle lies past
+// 2 h and the wall layers outside the container.
+TEST(Boundary, ObstaclesAreClippedToTheContainer) {
+    const auto start = std::chrono::steady_clock::now();
+    Scene scene = parseScene(R"({
+        "container": {"min": [0, 0, 0], "max": [1, 0.5, 0.5]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.4, 0.3, 0.5]}],
+        "obstacles": {"boxes": [{"min": [0.7, 0, 0.1], "max": [0.9, 1000, 0.4]}]},
+        "particles": {"spacing": 0.01},
+        "walls": {"model": "particles"}
+    })",
+                             "<tall obstacle>");
+    SimulationSetup setup = buildSetup(scene, {}, nullptr);
+    EXPECT_LT(secondsSince(start), 2.0);
+    const double d = 0.01, h = 0.02, margin = 2 * h + 2 * d + 1e-6;
+    std::size_t inObstacle = 0;
+    for (const Real4& b : setup.boundary.pos) {
+        ASSERT_LE(double(b.y), 0.5 + margin);
+        inObstacle += b.x > 0.7 && b.x < 0.9 && b.z > 0.1 && b.z < 0.4 ? 1 : 0;
+    }
+    EXPECT_GT(inObstacle, 100u);  // the obstacle's part inside the container is there
+    EXPECT_LT(boundarySampleBound(scene, d, h, 1), 1e6);
+}
+
+// A mesh triangle much larger than the container is sampled inside it only (it emitted n^2
+// points); one too large for its edge to be cut at the spacing is an error naming the mesh.
+TEST(Boundary, LargeMeshTrianglesAreClippedOrRefused) {
+    const fs::path dir = fs::temp_directory_path() / "weir_big_triangle_test";
+    fs::create_directories(dir);
+    {
+        std::ofstream f(dir / "sheet.obj");  // a 100 m triangle through the container at y = 0.2
+        f << "v -50 0.2 -50\nv 50 0.2 -50\nv 0 0.2 50\nf 1 3 2\n";
+    }
+    const std::string scene = R"({
+        "container": {"min": [0, 0, 0], "max": [1, 0.5, 0.5]},
+        "blocks": [{"min": [0, 0.25, 0], "max": [0.4, 0.5, 0.5]}],
+        "particles": {"spacing": 0.01},
+        "obstacles": {"meshes": [{"file": "sheet.obj", "scale": )";
+    const auto start = std::chrono::steady_clock::now();
+    Scene sheet = parseScene(scene + "1}]}}", (dir / "sheet.json").string());
+    const BoundarySamples samples = sampleBoundary(sheet, 0.01, 0.02, 1);
+    EXPECT_LT(secondsSince(start), 2.0);
+    std::size_t onSheet = 0;
+    for (const Vec3d& p : samples.points) {
+        onSheet += std::fabs(p.y - (0.2 - 0.005)) < 1e-9 ? 1 : 0;
+    }
+    EXPECT_GT(onSheet, 5000u);   // the container's cross-section, 1.1 x 0.6 m at d = 0.01
+    EXPECT_LT(onSheet, 20000u);  // and not the 5e7 points of the whole triangle
+
+    Scene huge = parseScene(scene + R"(1e4, "translate": [0, -1999.8, 0]}]}})",
+                            (dir / "huge.json").string());
+    try {
+        sampleBoundary(huge, 0.01, 0.02, 1);
+        FAIL() << "no error for a 1000 km triangle";
+    } catch (const SceneError& e) {
+        EXPECT_TRUE(std::string(e.what()).find("sheet.obj") != std::string::npos) << e.what();
+        EXPECT_TRUE(std::string(e.what()).find("100000") != std::string::npos) << e.what();
+    }
+    fs::remove_all(dir);
+}
+
+// A closed UV sphere of rings x segments x 2 triangles.
+MeshObstacle uvSphere(const Vec3d& centre, double radius, int rings, int segments) {
+    MeshObstacle mesh;
+    for (int r = 0; r <= rings; ++r) {
+        const double theta = kPi * r / rings;
+        for (int s = 0; s < segments; ++s) {
+            const double phi = 2 * kPi * s / segments;
+            mesh.vertices.push_back(centre + Vec3d(std::sin(theta) * std::cos(phi),
+                                                   std::cos(theta),
+                                                   std::sin(theta) * std::sin(phi)) *
+                                                 radius);
+        }
+    }
+    for (int r = 0; r < rings; ++r) {
+        for (int s = 0; s < segments; ++s) {
+            const int a = r * segments + s, b = r * segments + (s + 1) % segments;
+            const int c = a + segments, e = b + segments;
+            mesh.triangles.push_back({a, c, b});
+            mesh.triangles.push_back({b, c, e});
+        }
+    }
+    return mesh;
+}
+
+// The inside test through the mesh's index gives what testing every triangle gives, and a mesh
+// of 245k triangles answers 100k points in well under 2 s (every triangle for every point: hours
+// over a scene's 40 counting passes).
+TEST(Boundary, InsideMeshThroughTheIndexAgreesWithEveryTriangle) {
+    MeshObstacle plain = uvSphere(Vec3d(0.5, 0.4, 0.5), 0.3, 60, 90);
+    MeshObstacle indexed = plain;
+    buildMeshIndex(indexed);
+    ASSERT_TRUE(indexed.index);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> in(0.0, 1.0);
+    std::size_t inside = 0;
+    for (int k = 0; k < 4000; ++k) {
+        const Vec3d p(in(random), in(random), in(random));
+        const bool expected = insideMesh(plain, p);
+        ASSERT_EQ(insideMesh(indexed, p), expected) << p.x << " " << p.y << " " << p.z;
+        inside += expected ? 1 : 0;
+    }
+    EXPECT_GT(inside, 300u);  // about 4/3 pi 0.3^3 = 11% of the cube
+    // Points on the grid of an axis-aligned mesh's vertices, where rays graze edges.
+    MeshObstacle cube;
+    cube.vertices = {{0.2, 0.2, 0.2}, {0.6, 0.2, 0.2}, {0.2, 0.6, 0.2}, {0.6, 0.6, 0.2},
+                     {0.2, 0.2, 0.6}, {0.6, 0.2, 0.6}, {0.2, 0.6, 0.6}, {0.6, 0.6, 0.6}};
+    cube.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                      {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+    MeshObstacle cubeIndexed = cube;
+    buildMeshIndex(cubeIndexed);
+    for (double x = 0; x <= 0.8; x += 0.1) {
+        for (double y = 0; y <= 0.8; y += 0.1) {
+            for (double z = 0; z <= 0.8; z += 0.1) {
+                ASSERT_EQ(insideMesh(cubeIndexed, {x, y, z}), insideMesh(cube, {x, y, z}))
+                    << x << " " << y << " " << z;
+            }
+        }
+    }
+
+    MeshObstacle big = uvSphere(Vec3d(0.5, 0.5, 0.5), 0.4, 350, 350);
+    ASSERT_EQ(big.triangles.size(), 245000u);
+    const auto start = std::chrono::steady_clock::now();
+    buildMeshIndex(big);
+    std::size_t bigInside = 0;
+    for (int k = 0; k < 100000; ++k) {
+        bigInside += insideMesh(big, Vec3d(in(random), in(random), in(random))) ? 1 : 0;
+    }
+    EXPECT_LT(secondsSince(start), 2.0);
+    EXPECT_NEAR(double(bigInside) / 100000, 4.0 / 3.0 * kPi * 0.064, 0.01);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "scene/boundary.h"
 #include "scene/embedded_scenes.h"
 #include "scene/mesh_file.h"
 #include "solver/methods.h"
@@ -28,7 +29,13 @@ using Keys = std::initializer_list<std::string_view>;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr const char* kAxisNames[3] = {"x", "y", "z"};
-constexpr const char* kVec3Text = "an array of 3 finite numbers [x, y, z]";
+// How deep arrays and objects may nest: a scene needs 4 levels; the reader and its messages
+// recurse, so a file of 9,000 nested arrays would overflow the stack.
+constexpr int kMaxJsonDepth = 64;
+// Entries in each array of shapes: every seed is tested against every shape.
+constexpr std::size_t kMaxShapes = 1024;
+constexpr std::size_t kMaxMeshes = 64;
+constexpr std::size_t kMaxMeshTriangles = 4000000;
 
 std::string formatNumber(double v) {
     std::ostringstream out;
@@ -53,19 +60,135 @@ std::string join(const auto& items, std::string_view separator) {
     return out;
 }
 
+// Appends value as written (arrays spaced, objects compact), stopping once past 80 characters
+// and at a few levels deep, so that no input makes a message long or deep to build.
+void appendWritten(const Json& value, std::string& out, int depth, bool compact) {
+    if (out.size() > 80) {
+        return;
+    }
+    if (value.is_array() || value.is_object()) {
+        const bool array = value.is_array();
+        if (depth >= 8) {
+            out += array ? "[...]" : "{...}";
+            return;
+        }
+        out += array ? "[" : "{";
+        bool first = true;
+        for (auto it = value.begin(); it != value.end() && out.size() <= 80; ++it) {
+            out += first ? "" : (compact || !array ? "," : ", ");
+            first = false;
+            if (!array) {
+                out += Json(it.key()).dump() + ":";
+            }
+            appendWritten(*it, out, depth + 1, compact || !array);
+        }
+        out += array ? "]" : "}";
+    } else {
+        out += value.dump();
+    }
+}
+
 // A JSON value as the user wrote it (give or take spacing), for messages; long values are cut.
 std::string asWritten(const Json& value) {
     std::string text;
-    if (value.is_array()) {
-        std::vector<std::string> items;
-        for (const Json& item : value) {
-            items.push_back(asWritten(item));
-        }
-        text = "[" + join(items, ", ") + "]";
-    } else {
-        text = value.dump();
-    }
+    appendWritten(value, text, 0, false);
     return text.size() > 80 ? text.substr(0, 77) + "..." : text;
+}
+
+// "line L, column C" of byte offset `at` in text (both from 1).
+std::string lineAndColumn(const std::string& text, std::size_t at) {
+    at = std::min(at, text.size());
+    std::size_t line = 1, lineStart = 0;
+    for (std::size_t i = 0; i < at; ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            lineStart = i + 1;
+        }
+    }
+    return "line " + std::to_string(line) + ", column " + std::to_string(at - lineStart + 1);
+}
+
+// Offset of the first array or object nested deeper than maxDepth, if any: a linear scan that
+// skips strings and comments (malformed text is left for the parser to name).
+std::optional<std::size_t> tooDeep(const std::string& text, int maxDepth) {
+    int depth = 0;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '"') {
+            for (++i; i < text.size() && text[i] != '"'; ++i) {
+                i += text[i] == '\\' ? 1 : 0;
+            }
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
+            while (i < text.size() && text[i] != '\n') {
+                ++i;
+            }
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
+            const std::size_t end = text.find("*/", i + 2);
+            i = end == std::string::npos ? text.size() : end + 1;
+        } else if (c == '[' || c == '{') {
+            if (++depth > maxDepth) {
+                return i;
+            }
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return std::nullopt;
+}
+
+// A SAX handler that only notes where the text first fails to parse, with nlohmann's reason.
+struct SyntaxCheck : nlohmann::json_sax<Json> {
+    std::size_t at = 0;
+    std::string reason;
+
+    bool null() override { return true; }
+    bool boolean(bool) override { return true; }
+    bool number_integer(number_integer_t) override { return true; }
+    bool number_unsigned(number_unsigned_t) override { return true; }
+    bool number_float(number_float_t, const string_t&) override { return true; }
+    bool string(string_t&) override { return true; }
+    bool binary(binary_t&) override { return true; }
+    bool start_object(std::size_t) override { return true; }
+    bool key(string_t&) override { return true; }
+    bool end_object() override { return true; }
+    bool start_array(std::size_t) override { return true; }
+    bool end_array() override { return true; }
+    bool parse_error(std::size_t position, const std::string&,
+                     const nlohmann::detail::exception& e) override {
+        at = position > 0 ? position - 1 : 0;  // nlohmann counts the characters read
+        reason = e.what();
+        // Drop "[json.exception.parse_error.101] " and nlohmann's own "parse error at line L,
+        // column C: " (ours names the place for every error, number overflow included).
+        std::size_t cut = reason.find("] ");
+        reason = cut == std::string::npos ? reason : reason.substr(cut + 2);
+        if (reason.rfind("parse error", 0) == 0 && (cut = reason.find(": ")) != std::string::npos) {
+            reason = reason.substr(cut + 2);
+        }
+        if (reason.find("number overflow") != std::string::npos) {
+            reason += " (a number must be finite: at most about 1.8e308 in size)";
+        }
+        return false;
+    }
+};
+
+// The JSON of a scene file, or a SceneError naming the file, line and column of what is wrong.
+Json parseJson(const std::string& text, const std::string& source) {
+    if (std::optional<std::size_t> at = tooDeep(text, kMaxJsonDepth)) {
+        throw SceneError("scene '" + source + "': invalid JSON at " + lineAndColumn(text, *at) +
+                         ": arrays and objects nested more than " +
+                         std::to_string(kMaxJsonDepth) + " deep (a scene needs 4)");
+    }
+    SyntaxCheck check;
+    if (!Json::sax_parse(text, &check, Json::input_format_t::json, /*strict=*/true,
+                         /*ignore_comments=*/true)) {
+        throw SceneError("scene '" + source + "': invalid JSON at " +
+                         lineAndColumn(text, check.at) + ": " + check.reason);
+    }
+    try {
+        return Json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+    } catch (const Json::exception& e) {
+        throw SceneError("scene '" + source + "': invalid JSON: " + e.what());
+    }
 }
 
 std::size_t editDistance(std::string_view a, std::string_view b) {
@@ -124,11 +247,6 @@ Range greaterThan(double lo) {
     range.loOpen = true;
     return range;
 }
-Range atLeast(double lo) {
-    Range range;
-    range.lo = lo;
-    return range;
-}
 Range between(double lo, double hi) {
     Range range;
     range.lo = lo;
@@ -136,7 +254,21 @@ Range between(double lo, double hi) {
     return range;
 }
 
-const Range kPositive = greaterThan(0);
+// A number > 0 and at most hi.
+Range positiveUpTo(double hi) {
+    Range range = greaterThan(0);
+    range.hi = hi;
+    return range;
+}
+
+// Every number of a scene has bounds, so that nothing derived from it overflows a double, a float
+// or an integer: positions within 1000 km of the origin, speeds under 100 km/s, gravity within
+// 10,000 m/s^2 on each axis.
+constexpr double kMaxCoordinate = 1e6;
+const Range kCoordinate = between(-kMaxCoordinate, kMaxCoordinate);
+const Range kLength = positiveUpTo(kMaxCoordinate);
+const Range kVelocity = between(-1e5, 1e5);
+const Range kGravity = between(-1e4, 1e4);
 
 // Reads one JSON object of a scene file. It knows the object's JSON path ("blocks[1]") and the
 // file's name, so every error names the file, the field, the value as written and what is
@@ -201,20 +333,23 @@ class FieldReader {
         return *optionalNumber(key, range);
     }
 
-    Vec3d vec3(std::string_view key, std::optional<Vec3d> fallback = std::nullopt) const {
+    // An array [x, y, z] of numbers, each in `range` (positions by default).
+    Vec3d vec3(std::string_view key, std::optional<Vec3d> fallback = std::nullopt,
+               const Range& range = kCoordinate) const {
+        const std::string allowed = "an array of 3 finite numbers [x, y, z], each " + range.text();
         const Json* value = find(key);
         if (!value) {
             if (!fallback) {
-                fail(pathOf(key), "missing", kVec3Text);
+                fail(pathOf(key), "missing", allowed);
             }
             return *fallback;
         }
         bool ok = value->is_array() && value->size() == 3;
         for (std::size_t i = 0; ok && i < 3; ++i) {
-            ok = (*value)[i].is_number() && std::isfinite((*value)[i].get<double>());
+            ok = (*value)[i].is_number() && range.contains((*value)[i].get<double>());
         }
         if (!ok) {
-            fail(pathOf(key), asWritten(*value), kVec3Text);
+            fail(pathOf(key), asWritten(*value), allowed);
         }
         return {(*value)[0].get<double>(), (*value)[1].get<double>(), (*value)[2].get<double>()};
     }
@@ -248,16 +383,21 @@ class FieldReader {
         return FieldReader(value ? *value : kEmpty, pathOf(key), source_, allowed);
     }
 
-    // Calls read(FieldReader) for each object of the array under key (absent: none).
+    // Calls read(FieldReader) for each object of the array under key (absent: none), at most
+    // maxItems of them.
     template <class Read>
-    void forEach(std::string_view key, Keys allowed, Read&& read) const {
+    void forEach(std::string_view key, Keys allowed, Read&& read,
+                 std::size_t maxItems = kMaxShapes) const {
         const Json* value = find(key);
         if (!value) {
             return;
         }
-        if (!value->is_array()) {
-            fail(pathOf(key), asWritten(*value),
-                 "an array of objects with keys " + join(allowed, ", "));
+        if (!value->is_array() || value->size() > maxItems) {
+            fail(pathOf(key),
+                 value->is_array() ? "an array of " + std::to_string(value->size()) + " entries"
+                                   : asWritten(*value),
+                 "an array of objects with keys " + join(allowed, ", ") + " (at most " +
+                     std::to_string(maxItems) + " of them)");
         }
         for (std::size_t i = 0; i < value->size(); ++i) {
             read(FieldReader((*value)[i], pathOf(key) + "[" + std::to_string(i) + "]", source_,
@@ -296,7 +436,7 @@ Box readBox(const FieldReader& r) {
 }
 
 SphereShape readSphere(const FieldReader& r) {
-    return {r.vec3("center"), r.number("radius", kPositive)};
+    return {r.vec3("center"), r.number("radius", kLength)};
 }
 
 // Fluid must start inside the container: says how far a shape's bounds stick out ("" if not).
@@ -339,16 +479,7 @@ std::optional<Integrator> integratorByName(const std::string& name) {
 
 Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
                       const std::string& defaultName) {
-    Json root;
-    try {
-        root = Json::parse(jsonText, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-    } catch (const Json::exception& e) {
-        // Drop nlohmann's "[json.exception.parse_error.101] " prefix; keep line and column.
-        std::string what = e.what();
-        std::size_t end = what.find("] ");
-        throw SceneError("scene '" + source + "': invalid JSON: " +
-                         (end == std::string::npos ? what : what.substr(end + 2)));
-    }
+    const Json root = parseJson(jsonText, source);
 
     FieldReader top(root, "", source,
                     {"name", "description", "container", "blocks", "spheres", "obstacles", "fluid",
@@ -379,13 +510,13 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     }
 
     top.forEach("blocks", {"min", "max", "velocity"}, [&](const FieldReader& r) {
-        FluidBlock block{readBox(r), r.vec3("velocity", Vec3d{})};
+        FluidBlock block{readBox(r), r.vec3("velocity", Vec3d{}, kVelocity)};
         requireInside(r, block.box, container,
                       "{min " + r.written("min") + ", max " + r.written("max") + "}");
         scene.blocks.push_back(block);
     });
     top.forEach("spheres", {"center", "radius", "velocity"}, [&](const FieldReader& r) {
-        FluidSphere fluid{readSphere(r), r.vec3("velocity", Vec3d{})};
+        FluidSphere fluid{readSphere(r), r.vec3("velocity", Vec3d{}, kVelocity)};
         const SphereShape& s = fluid.sphere;
         Vec3d extent{s.radius, s.radius, s.radius};
         requireInside(r, Box{s.center - extent, s.center + extent}, container,
@@ -404,11 +535,12 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     obstacles.forEach("spheres", {"center", "radius"}, [&](const FieldReader& r) {
         scene.obstacleSpheres.push_back(readSphere(r));
     });
+    std::size_t meshTriangles = 0;
     obstacles.forEach("meshes", {"file", "scale", "translate"}, [&](const FieldReader& r) {
         MeshObstacle mesh;
         r.require("file", "an OBJ or STL file name");
         mesh.file = r.string("file", "");
-        mesh.scale = r.number("scale", kPositive, 1.0);
+        mesh.scale = r.number("scale", kLength, 1.0);
         mesh.translate = r.vec3("translate", Vec3d{});
         // Relative to the scene file's folder (the working directory for built-in scenes).
         std::filesystem::path file(mesh.file);
@@ -425,8 +557,26 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
             r.fail(r.pathOf("file"), r.written("file"),
                    "a readable OBJ or STL file (" + file.string() + ": " + e.what() + ")");
         }
+        for (const Vec3d& v : mesh.vertices) {
+            for (int a = 0; a < 3; ++a) {
+                if (!(std::fabs(v[a]) <= 10 * kMaxCoordinate)) {
+                    r.fail(r.pathOf("scale"), r.written("scale"),
+                           "a scale that keeps the mesh " + file.string() + " within " +
+                               formatNumber(10 * kMaxCoordinate) +
+                               " m of the origin (a vertex lands at " + formatVec(v) + ")");
+                }
+            }
+        }
+        meshTriangles += mesh.triangles.size();
+        if (meshTriangles > kMaxMeshTriangles) {
+            r.fail(r.pathOf("file"), r.written("file"),
+                   "a mesh that keeps the scene's meshes at " + std::to_string(kMaxMeshTriangles) +
+                       " triangles in all (" + file.string() + " brings them to " +
+                       std::to_string(meshTriangles) + ")");
+        }
+        buildMeshIndex(mesh);
         scene.obstacleMeshes.push_back(std::move(mesh));
-    });
+    }, kMaxMeshes);
 
     FieldReader fluid =
         top.object("fluid", {"preset", "restDensity", "viscosity", "stiffness", "eos",
@@ -461,9 +611,13 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
         scene.restDensity = preset->density;
         scene.physicalViscosity = preset->viscosity;
     }
-    scene.restDensity = fluid.number("restDensity", kPositive, scene.restDensity);
-    scene.viscosity = fluid.optionalNumber("viscosity", atLeast(0));
-    scene.stiffness = fluid.optionalNumber("stiffness", kPositive);
+    scene.restDensity = fluid.number("restDensity", positiveUpTo(1e5), scene.restDensity);
+    Range viscosityRange = between(0, 1e6);
+    viscosityRange.hiOpen = true;
+    scene.viscosity = fluid.optionalNumber("viscosity", viscosityRange);
+    Range stiffnessRange = positiveUpTo(1e12);
+    stiffnessRange.note = " (a speed of sound up to 1e6 m/s)";
+    scene.stiffness = fluid.optionalNumber("stiffness", stiffnessRange);
     scene.eosGiven = fluid.find("eos") != nullptr;
     std::string eos = fluid.string("eos", delta ? "tait" : "linear");
     if (eos == "linear") {
@@ -507,17 +661,19 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     if (auto count = particles.optionalNumber("count", countRange)) {
         scene.particleCount = static_cast<std::int64_t>(*count);
     }
-    scene.spacing = particles.optionalNumber("spacing", kPositive);
+    scene.spacing = particles.optionalNumber("spacing", kLength);
     scene.smoothingRatio =
         particles.number("smoothingRatio", between(1.2, 5), scene.smoothingRatio);
 
-    scene.gravity = top.vec3("gravity", scene.gravity);
+    scene.gravity = top.vec3("gravity", scene.gravity, kGravity);
 
     FieldReader time =
         top.object("time", {"duration", "frameRate", "timeStep", "integrator", "adaptive"});
-    scene.duration = time.number("duration", kPositive, scene.duration);
-    scene.frameRate = time.number("frameRate", kPositive, scene.frameRate);
-    // A step longer than a frame could not land on frame times.
+    scene.duration = time.number("duration", positiveUpTo(1e6), scene.duration);
+    // (A frame rate so low that a frame takes more than 1e9 steps fails at set-up.)
+    scene.frameRate = time.number("frameRate", positiveUpTo(1e5), scene.frameRate);
+    // A step longer than a frame could not land on frame times (one so short that a frame takes
+    // more than 1e9 steps fails at set-up).
     Range stepRange = greaterThan(0);
     stepRange.hi = 1.0 / scene.frameRate;
     stepRange.note = " (1 / frameRate)";
@@ -570,7 +726,7 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
         }
         moving.axis = face[1] - 'x';
         moving.side = face[0] == '+' ? 1 : 0;
-        moving.velocity = r.vec3("velocity");
+        moving.velocity = r.vec3("velocity", std::nullopt, kVelocity);
         if (moving.velocity[moving.axis] != 0) {
             r.fail(r.pathOf("velocity"), r.written("velocity"),
                    "a velocity along the face (its " + std::string(1, face[1]) +
@@ -585,8 +741,8 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     }
 
     FieldReader limits = top.object("limits", {"maxSpeed", "maxCompression"});
-    scene.maxSpeed = limits.optionalNumber("maxSpeed", kPositive);
-    scene.maxCompression = limits.number("maxCompression", greaterThan(0), scene.maxCompression);
+    scene.maxSpeed = limits.optionalNumber("maxSpeed", positiveUpTo(1e8));
+    scene.maxCompression = limits.number("maxCompression", positiveUpTo(1e3), scene.maxCompression);
 
     scene.solver = top.string("solver", "");
     try {

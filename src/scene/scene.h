@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -38,6 +39,8 @@ struct FluidSphere {
     Vec3d velocity;
 };
 
+struct MeshIndex;  // scene/boundary.cpp
+
 // A triangle-mesh obstacle read from an OBJ or STL file (ASCII or binary STL), placed by a
 // uniform scale then a translation. Triangles in metres after placement; outward normals by the
 // right-hand rule (counter-clockwise seen from outside), as both formats specify.
@@ -47,6 +50,9 @@ struct MeshObstacle {
     Vec3d translate;
     std::vector<Vec3d> vertices;  // placed
     std::vector<std::array<int, 3>> triangles;
+    // The triangles by where they lie across the inside test's ray (scene/boundary.h,
+    // buildMeshIndex): built once when the scene is read, shared by copies; null: test them all.
+    std::shared_ptr<const MeshIndex> index;
 };
 
 enum class Integrator { SemiImplicitEuler, ExplicitEuler };

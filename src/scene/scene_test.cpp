@@ -342,7 +342,8 @@ TEST(Scene, MessageReadsWell) {
                           "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}],
                           "fluid": {"restDensity": -5}})",
                       "scenes/x.json"),
-              "scene 'scenes/x.json': field 'fluid.restDensity' is -5, must be a number > 0");
+              "scene 'scenes/x.json': field 'fluid.restDensity' is -5, must be a number > 0 and "
+              "<= 100000");
 }
 
 TEST(Scene, MalformedJsonReportsFileAndPosition) {
@@ -378,6 +379,95 @@ TEST(Scene, UnreadableFilesReportPathAndReason) {
         EXPECT_TRUE(contains(e.what(), "'" + directory + "'"));
         EXPECT_TRUE(contains(e.what(), "Is a directory"));
     }
+}
+
+// A scene nested thousands deep (an 18 KB gravity of 9,000 arrays crashed the reader's messages,
+// nested objects its JSON writer): refused before anything recurses, naming file, line, limit.
+TEST(Scene, DeepNestingIsRefusedWithItsPlace) {
+    const std::string arrays = std::string(9000, '[') + std::string(9000, ']');
+    std::string message = errorOf(R"({"container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+  "gravity": )" + arrays + "}",
+                                  "deep.json");
+    EXPECT_TRUE(contains(message, "scene 'deep.json': invalid JSON at line 2, column"));
+    EXPECT_TRUE(contains(message, "nested more than 64 deep"));
+
+    std::string objects;
+    for (int i = 0; i < 9000; ++i) {
+        objects += "{\"a\": ";
+    }
+    objects += "1" + std::string(9000, '}');
+    message = errorOf("{\"description\": " + objects + "}", "objects.json");
+    EXPECT_TRUE(contains(message, "objects.json"));
+    EXPECT_TRUE(contains(message, "64"));
+
+    // Brackets inside strings and comments do not count; 64 levels are allowed.
+    const std::string deepest = std::string(62, '[') + "1" + std::string(62, ']');
+    message = errorOf(R"({"name": "[[[[{{{{", /* [[[[ */
+        "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+        "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}], // {{{{
+        "gravity": )" + deepest + "}");
+    EXPECT_TRUE(contains(message, "'gravity' is [[[[[[[[")) << message;  // a value, not nesting
+    EXPECT_TRUE(contains(message, "an array of 3 finite numbers")) << message;
+}
+
+// Every JSON error names the line and column, number overflow (1e309) included.
+TEST(Scene, JsonErrorsNameLineAndColumn) {
+    std::string message = errorOf("{\n  \"fluid\": {\n    \"restDensity\": 1e309\n  }\n}");
+    EXPECT_TRUE(contains(message, "scene 'bad.json': invalid JSON at line 3, column")) << message;
+    EXPECT_TRUE(contains(message, "1e309"));
+    EXPECT_TRUE(contains(message, "finite"));
+    message = errorOf("{\"a\": 1,\n\n   x}");
+    EXPECT_TRUE(contains(message, "invalid JSON at line 3, column 4")) << message;
+    EXPECT_FALSE(contains(message, "json.exception"));
+}
+
+// Numbers that overflowed downstream (a density of 1e300 gave NaN at step 0) are refused with the
+// file, the field, the value and the allowed range.
+TEST(Scene, HugeNumbersAreRefusedWithTheirRange) {
+    struct Huge {
+        const char* pointer;
+        const char* value;
+        const char* field;
+        const char* allowed;
+    };
+    const Huge cases[] = {
+        {"/fluid/restDensity", "1e300", "'fluid.restDensity'", "a number > 0 and <= 100000"},
+        {"/fluid/stiffness", "1e300", "'fluid.stiffness'", "<= 1e+12"},
+        {"/fluid/viscosity", "1e300", "'fluid.viscosity'", "< 1000000"},
+        {"/gravity", "[0, -1e300, 0]", "'gravity'", "each a number in [-10000, 10000]"},
+        {"/blocks/0/velocity", "[1e300, 0, 0]", "'blocks[0].velocity'",
+         "each a number in [-100000, 100000]"},
+        {"/container/max", "[1e300, 1, 1]", "'container.max'",
+         "each a number in [-1000000, 1000000]"},
+        {"/spheres/0/radius", "1e300", "'spheres[0].radius'", "<= 1000000"},
+        {"/time/frameRate", "1e300", "'time.frameRate'", "<= 100000"},
+        {"/time/duration", "1e300", "'time.duration'", "<= 1000000"},
+        {"/limits/maxSpeed", "1e300", "'limits.maxSpeed'", "<= 100000000"},
+        {"/limits/maxCompression", "1e300", "'limits.maxCompression'", "<= 1000"},
+    };
+    for (const Huge& c : cases) {
+        Json scene = Json::parse(kValidScene);
+        scene[Json::json_pointer(c.pointer)] = Json::parse(c.value);
+        const std::string message = errorOf(scene.dump(), "huge.json");
+        SCOPED_TRACE(c.pointer);
+        EXPECT_TRUE(contains(message, "scene 'huge.json'"));
+        EXPECT_TRUE(contains(message, c.field));
+        EXPECT_TRUE(contains(message, "1e+300"));
+        EXPECT_TRUE(contains(message, c.allowed));
+    }
+}
+
+// Every seed is tested against every shape: arrays of shapes are bounded.
+TEST(Scene, TooManyShapesAreRefused) {
+    Json scene = Json::parse(kValidScene);
+    Json boxes = Json::array();
+    for (int i = 0; i < 1025; ++i) {
+        boxes.push_back({{"min", {1.0, 0, 0}}, {"max", {1.2, 0.2, 0.6}}});
+    }
+    scene["obstacles"]["boxes"] = boxes;
+    const std::string message = errorOf(scene.dump(), "many.json");
+    EXPECT_TRUE(contains(message, "'obstacles.boxes' is an array of 1025 entries"));
+    EXPECT_TRUE(contains(message, "at most 1024"));
 }
 
 }  // namespace

@@ -101,6 +101,9 @@ struct SceneSeeds {
     std::vector<MeshObstacle> obstacleMeshes;
     std::vector<SeedLattice> lattices;
     std::int64_t count = 0;  // particles the lattices keep
+    // Counting stopped past the limit sceneSeeds was given: count is then at least the limit
+    // (estimated, from a coarser lattice, or counted until past it); lattices may be incomplete.
+    bool overLimit = false;
 
     bool empty() const { return lattices.empty(); }
     // Whether a backend can seed these without the host (no mesh obstacles).
@@ -109,9 +112,15 @@ struct SceneSeeds {
     SeedShapes shapes() const;
 };
 
-// The seeding of `scene` at spacing d, with its particle count (counted in parallel; in closed
-// form for a block that no obstacle or earlier shape touches).
-SceneSeeds sceneSeeds(const Scene& scene, double spacing);
+// Particles a scene may have: particle ids and counts are 32-bit.
+constexpr std::int64_t kMaxParticles = 2147483647;
+
+// The seeding of `scene` at spacing d, with its particle count (in closed form for a block that
+// no obstacle or earlier shape touches, else counted in parallel). Counting stops once past
+// `limit` (overLimit): a lattice far larger is estimated from a coarser one first, so that a too
+// fine spacing fails in well under a second. Throws SceneError for a lattice too large to count
+// that would keep less than the limit (a huge block mostly inside obstacles).
+SceneSeeds sceneSeeds(const Scene& scene, double spacing, std::int64_t limit = kMaxParticles);
 
 // Whether p lies inside one of the seeds' mesh obstacles (host only).
 bool insideObstacleMesh(const SceneSeeds& seeds, const Vec3d& p);

@@ -3,13 +3,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <utility>
 #include <sstream>
 
+#include "core/exec_cpu.h"
 #include "grid/cell_id.h"
 #include "physics/kernels.h"
 #include "scene/boundary.h"
 #include "scene/lattice_seeder.h"
 #include "scene/seeding.h"
+#include "solver/simulation.h"
 
 namespace weir {
 
@@ -22,7 +26,12 @@ constexpr double kDefaultArtificialViscosity = 0.01;
 constexpr double kDefaultDensityDiffusion = 0.1;
 constexpr double kDeltaSphCfl = 0.25;
 
-std::int64_t countSeeds(const Scene& scene, double d) { return sceneSeeds(scene, d).count; }
+// Steps per output frame at most: beyond, a time step is too small to run (and an int).
+constexpr double kMaxStepsPerFrame = 1e9;
+
+std::int64_t countSeeds(const Scene& scene, double d, std::int64_t limit) {
+    return sceneSeeds(scene, d, limit).count;
+}
 
 double fluidVolume(const Scene& scene) {
     double v = 0;
@@ -36,15 +45,17 @@ double fluidVolume(const Scene& scene) {
     return v;
 }
 
-// The spacing whose lattice holds closest to `wanted` particles (bisection on the count).
+// The spacing whose lattice holds closest to `wanted` particles (bisection on the count; counts
+// past twice the wanted one are cut short, they only need to read as too many).
 double spacingForCount(const Scene& scene, std::int64_t wanted) {
+    const std::int64_t limit = 2 * wanted + 1;
     double guess = std::cbrt(fluidVolume(scene) / double(wanted));
     double lo = guess * 0.7, hi = guess * 1.4;  // count(lo) >= wanted >= count(hi)
     double best = guess;
-    std::int64_t bestError = std::llabs(countSeeds(scene, guess) - wanted);
+    std::int64_t bestError = std::llabs(countSeeds(scene, guess, limit) - wanted);
     for (int it = 0; it < 40 && bestError > 0; ++it) {
         double mid = 0.5 * (lo + hi);
-        std::int64_t count = countSeeds(scene, mid);
+        std::int64_t count = countSeeds(scene, mid, limit);
         if (std::llabs(count - wanted) < bestError) {
             bestError = std::llabs(count - wanted);
             best = mid;
@@ -64,6 +75,60 @@ std::string fmt(double v) {
     return s.str();
 }
 
+// What host memory holds, checked before anything is seeded or sampled: the seeded arrays (unless
+// the backend seeds) and, for a CPU run, the simulation's (solver/simulation.h's estimate in the
+// leanest neighbour mode; makeSimulation checks the chosen one); the same reserve as
+// checkMemoryFits.
+struct HostBudget {
+    std::size_t freeBytes = 0, usable = 0, perParticle = 0;
+    std::int64_t maxParticles = kMaxParticles;
+
+    explicit HostBudget(const SetupOptions& options) {
+        freeBytes = options.hostFreeBytes ? *options.hostFreeBytes : CpuExec().freeMemoryBytes();
+        const std::size_t reserve = (std::size_t(256) << 20) + freeBytes / 10;
+        usable = freeBytes > reserve ? freeBytes - reserve : 0;
+        perParticle = options.seedOnDevice ? 0 : 8 * sizeof(Real);  // HostParticles
+        if (options.backend == Backend::Cpu) {
+            perParticle += std::min(bytesPerParticleEstimate(NeighbourMode::Grid),
+                                    bytesPerParticleEstimate(NeighbourMode::Dense));
+        }
+        if (perParticle > 0) {
+            maxParticles = std::int64_t(
+                std::min<std::size_t>(std::size_t(kMaxParticles), usable / perParticle));
+        }
+    }
+
+    // The SceneError for `count` particles (about, when estimated) at spacing d.
+    SceneError tooMany(const std::string& where, double count, double d, bool about) const {
+        const std::string hint =
+            "; use a larger particles.spacing, or a smaller particles.count or --particles";
+        if (count > double(kMaxParticles) && maxParticles == kMaxParticles) {
+            return SceneError(where + ": " + (about ? "about " : "") + fmt(count) +
+                              " particles at spacing " + fmt(d) + " m exceed the limit of " +
+                              std::to_string(kMaxParticles) + " (32-bit particle ids)" + hint);
+        }
+        return SceneError(where + ": " + (about ? "about " : "") + fmt(count) +
+                          " particles at spacing " + fmt(d) + " m need about " +
+                          fmt(count * double(perParticle) / double(1 << 20)) +
+                          " MiB of host memory (" + std::to_string(perParticle) +
+                          " bytes each) but it has " + std::to_string(freeBytes >> 20) +
+                          " MiB free: at most " + std::to_string(maxParticles) +
+                          " particles fit" + hint);
+    }
+};
+
+// Throws SceneError when a derived parameter does not fit the solver's Real (float by default).
+void requireReal(const std::string& where, const std::string& what, double value) {
+    const bool fits = std::isfinite(value) && std::isfinite(double(Real(value))) &&
+                      (value == 0 || Real(value) != Real(0));
+    if (!fits) {
+        throw SceneError(where + ": the derived " + what + " = " + fmt(value) +
+                         " does not fit the solver's numbers (" + std::to_string(sizeof(Real) * 8) +
+                         "-bit floating point); bring particles.spacing, fluid.restDensity, "
+                         "fluid.stiffness, fluid.viscosity and gravity nearer everyday values");
+    }
+}
+
 }  // namespace
 
 HostParticles seedParticles(const Scene& scene, double spacing) {
@@ -77,9 +142,19 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     SetupReport report;
     auto say = [&](const std::string& line) { report.lines.push_back(line); };
     const std::string where = "scene '" + scene.sourcePath + "'";
+    const HostBudget budget(options);
 
     // Resolution: spacing given, or the spacing whose lattice holds the wanted count.
     report.fluidVolume = fluidVolume(scene);
+    const std::optional<std::int64_t> wantedCount =
+        options.particleCount ? options.particleCount
+                              : (scene.spacing ? std::nullopt
+                                               : std::optional<std::int64_t>(scene.particleCount.value_or(
+                                                     kDefaultParticleCount)));
+    if (wantedCount && *wantedCount > budget.maxParticles) {
+        throw budget.tooMany(where, double(*wantedCount),
+                             std::cbrt(report.fluidVolume / double(*wantedCount)), true);
+    }
     if (options.particleCount) {
         report.spacing = spacingForCount(scene, *options.particleCount);
         say("spacing d = " + fmt(report.spacing) + " m, for about " +
@@ -95,14 +170,13 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     }
     const double d = report.spacing;
     SimulationSetup setup;
-    SceneSeeds seeds = sceneSeeds(scene, d);
+    SceneSeeds seeds = sceneSeeds(scene, d, budget.maxParticles);
     if (seeds.count == 0) {
         throw SceneError(where + ": the fluid holds no particle at spacing " + fmt(d) +
                          " m; make the blocks or spheres larger or the spacing smaller");
     }
-    if (seeds.count > std::int64_t(2147483647)) {
-        throw SceneError(where + ": " + std::to_string(seeds.count) +
-                         " particles exceed the limit of 2147483647");
+    if (seeds.overLimit) {
+        throw budget.tooMany(where, double(seeds.count), d, true);
     }
     // Smoothing radius and mass (§5.2: mass from density, volume and count). The lattice sum
     // corrects the mass so that the initial lattice sits exactly at the rest density; without
@@ -270,7 +344,19 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         }
     }
     report.frameInterval = 1.0 / scene.frameRate;
-    report.stepsPerFrame = std::max(1, int(std::ceil(report.frameInterval / dt - 1e-9)));
+    const double steps = std::ceil(report.frameInterval / dt - 1e-9);
+    if (!(steps <= kMaxStepsPerFrame)) {
+        throw SceneError(
+            where + ": a time step of " + fmt(dt) + " s" +
+            (scene.timeStep ? " (time.timeStep)"
+                            : " (the stable limit: CFL " + fmt(dtCfl) + ", viscous " +
+                                  fmt(dtViscous) + ", force " + fmt(dtForce) + " s)") +
+            " takes " + fmt(steps) + " steps per frame of " + fmt(report.frameInterval) +
+            " s, more than the " + fmt(kMaxStepsPerFrame) +
+            " allowed; use a larger time.timeStep or time.frameRate, a larger particles.spacing, "
+            "or a lower fluid.stiffness or fluid.viscosity");
+    }
+    report.stepsPerFrame = std::max(1, int(steps));
     dt = report.frameInterval / report.stepsPerFrame;
     report.frames = std::int64_t(std::floor(scene.duration * scene.frameRate + 1e-9));
     if (adaptive) {
@@ -351,6 +437,21 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         p.cflNumber = Real(cfl);
     }
 
+    for (const auto& [what, value] : std::initializer_list<std::pair<const char*, double>>{
+             {"particle mass", mass},
+             {"inverse rest density", 1.0 / scene.restDensity},
+             {"kernel coefficient 315 / (64 pi h^9)", double(p.kernel.poly6)},
+             {"kernel gradient coefficient 45 / (pi h^6)", double(p.kernel.spikyGrad)},
+             {"kernel laplacian coefficient 45 / (pi h^6)", double(p.kernel.viscLaplace)},
+             {"stiffness", stiffness},
+             {"Tait coefficient B", taitB},
+             {"viscosity", viscosity},
+             {"time step", dt},
+             {"speed bound", double(p.maxSpeed)},
+             {"weight of gravity", length(scene.gravity) * mass}}) {
+        requireReal(where, what, value);
+    }
+
     // The particles, on the host or left to the simulation's backend, starting at the density
     // of a fluid at rest: hydrostatic down each block from its top (the continuity equation
     // keeps it; the paper's model recomputes density from positions anyway).
@@ -391,6 +492,28 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         setup.obstacleSpheres.push_back({Vec3(s.center), Real(s.radius)});
     }
     if (scene.walls == WallModel::Particles) {
+        // Boundary particles, bounded before they are sampled: their samples, sort and grid.
+        double boundaryPoints = 0;
+        try {
+            boundaryPoints = boundarySampleBound(scene, d, h, boundaryLayers(h, d, deltaModel));
+        } catch (const SceneError& e) {
+            throw SceneError(where + ": " + e.what());
+        }
+        const double boundaryBytes =
+            boundaryPoints * 200.0 + 8.0 * double(setup.grid.dims[0] + 2) *
+                                         double(setup.grid.dims[1] + 2) *
+                                         double(setup.grid.dims[2] + 2);
+        const double spare = double(budget.usable) -
+                             double(setup.particleCount()) * double(budget.perParticle);
+        if (boundaryPoints > double(kMaxParticles) || boundaryBytes > spare) {
+            throw SceneError(
+                where + ": the walls and obstacles take up to " + fmt(boundaryPoints) +
+                " boundary particles at spacing " + fmt(d) + " m, about " +
+                fmt(boundaryBytes / double(1 << 20)) + " MiB with their grid, but host memory has " +
+                fmt(std::max(0.0, spare) / double(1 << 20)) +
+                " MiB to spare; use a larger particles.spacing, a smaller container or "
+                "obstacles, or walls.model \"simple\"");
+        }
         const BoundaryKernel kernel = deltaModel ? BoundaryKernel::Wendland : BoundaryKernel::Poly6;
         std::array<Vec3d, 6> faceVelocity{};
         for (const MovingWall& moving : scene.movingWalls) {

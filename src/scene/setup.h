@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/backend.h"
 #include "physics/kernels.h"
 #include "scene/scene.h"
 #include "solver/simulation_setup.h"
@@ -18,6 +19,12 @@ struct SetupOptions {
     // Leave the particles to be seeded by the simulation on its own backend (on the GPU for a
     // CUDA run): setup.seeder instead of setup.particles, for runs too large to seed on the host.
     bool seedOnDevice = false;
+    // The backend the run will use, when known: a CPU run also needs its simulation's arrays in
+    // host memory (unset: only the seeded arrays are checked against host memory before seeding;
+    // makeSimulation checks the backend's memory in full).
+    std::optional<Backend> backend;
+    // Free host memory in bytes (unset: measured; tests set it).
+    std::optional<std::size_t> hostFreeBytes;
 };
 
 // What was chosen and why, for logs, --explain and benchmarks.
@@ -37,7 +44,9 @@ struct SetupReport {
     std::vector<std::string> warnings;  // settings likely to make the fluid misbehave
 };
 
-// Builds the setup; throws SceneError for a scene that cannot be run (no particles, grid too big).
+// Builds the setup; throws SceneError for a scene that cannot be run (no particles, grid too big,
+// more particles or boundary particles than host memory holds: counted or estimated before any
+// is seeded, naming the most that fit; derived parameters that overflow).
 SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, SetupReport* report);
 
 // Initial particles on a cubic lattice of spacing d filling the scene's blocks and spheres.

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -649,6 +650,136 @@ TEST(Setup, FluidTooSmallForOneParticleIsASceneError) {
     })",
                            "buried.json");
     EXPECT_TRUE(contains(message, "no particle"));
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The SceneError of buildSetup with these options ("" and a test failure if none).
+std::string setupErrorWith(const std::string& json, const SetupOptions& options) {
+    try {
+        buildSetup(parseScene(json, "big.json"), options, nullptr);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no SceneError for " << json;
+    return "";
+}
+
+// More particles than host memory holds fail before any is seeded (2147483647 of them filled
+// 69 GB of host arrays first), quickly, naming the most that fit.
+TEST(Setup, TooManyParticlesFailBeforeSeedingNamingWhatFits) {
+    const std::string tank = R"({
+        "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+        "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}]
+    })";
+    SetupOptions options;
+    options.hostFreeBytes = std::size_t(8) << 30;
+    options.backend = Backend::Cpu;
+    options.particleCount = 2147483647;
+    const std::size_t freeBytes = *options.hostFreeBytes;
+    const std::size_t usable = freeBytes - (std::size_t(256) << 20) - freeBytes / 10;
+    const std::size_t perParticle = 8 * sizeof(Real) +
+                                    std::min(bytesPerParticleEstimate(NeighbourMode::Grid),
+                                             bytesPerParticleEstimate(NeighbourMode::Dense));
+    const std::string fit = std::to_string(usable / perParticle);
+
+    auto start = std::chrono::steady_clock::now();
+    std::string message = setupErrorWith(tank, options);
+    EXPECT_TRUE(contains(message, "scene 'big.json'"));
+    EXPECT_TRUE(contains(message, "2.147e+09 particles"));
+    EXPECT_TRUE(contains(message, "host memory"));
+    EXPECT_TRUE(contains(message, "at most " + fit + " particles fit")) << message;
+    EXPECT_TRUE(contains(message, "particles.spacing"));
+
+    // The scene's count, and spacings far too fine: a lone block (closed form), a sphere and a
+    // block cut by an obstacle (estimated from a coarser lattice, not counted point by point).
+    options.particleCount.reset();
+    message = setupErrorWith(R"({
+        "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+        "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}],
+        "particles": {"count": 2147483647}
+    })",
+                             options);
+    EXPECT_TRUE(contains(message, "at most " + fit + " particles fit")) << message;
+    for (const char* fluid : {
+             R"("blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}])",
+             R"("spheres": [{"center": [0.5, 0.5, 0.5], "radius": 0.4}])",
+             R"("blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}],
+                "obstacles": {"boxes": [{"min": [0.2, 0, 0.2], "max": [0.4, 0.3, 0.4]}]})"}) {
+        message = setupErrorWith(R"({"container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+                                     "particles": {"spacing": 1e-4}, )" +
+                                     std::string(fluid) + "}",
+                                 options);
+        EXPECT_TRUE(contains(message, "about ")) << message;
+        EXPECT_TRUE(contains(message, "at spacing 0.0001 m")) << message;
+        EXPECT_TRUE(contains(message, "at most " + fit + " particles fit")) << message;
+    }
+    EXPECT_LT(secondsSince(start), 2.0 * 6);  // six scenes, each well under 2 s
+
+    // Without a backend given, only the seeded arrays are counted against host memory.
+    options.backend.reset();
+    options.particleCount = 2147483647;
+    message = setupErrorWith(tank, options);
+    EXPECT_TRUE(contains(message, "at most " + std::to_string(usable / (8 * sizeof(Real))) +
+                                      " particles fit"))
+        << message;
+}
+
+// Walls of boundary particles too many for memory fail before they are sampled.
+TEST(Setup, TooManyBoundaryParticlesFailBeforeSampling) {
+    SetupOptions options;
+    options.hostFreeBytes = std::size_t(8) << 30;
+    const auto start = std::chrono::steady_clock::now();
+    const std::string message = setupErrorWith(R"({
+        "container": {"min": [0, 0, 0], "max": [1000, 1, 1000]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.1, 0.1, 0.1]}],
+        "particles": {"spacing": 0.01},
+        "walls": {"model": "particles"}
+    })",
+                                               options);
+    EXPECT_TRUE(contains(message, "scene 'big.json'"));
+    EXPECT_TRUE(contains(message, "boundary particles at spacing 0.01 m")) << message;
+    EXPECT_TRUE(contains(message, "walls.model"));
+    EXPECT_LT(secondsSince(start), 2.0);
+}
+
+// A time step so short that a frame takes billions of steps is an error, not a silent 1/30 s
+// (the steps per frame overflowed an int): given (time.timeStep), or derived from a huge
+// viscosity of a light fluid.
+TEST(Setup, TimeStepsTooShortForAFrameAreRefused) {
+    std::string message = setupErrorOf(R"({
+        "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+        "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}],
+        "particles": {"count": 1000},
+        "time": {"timeStep": 1e-11}
+    })",
+                                       "short.json");
+    EXPECT_TRUE(contains(message, "scene 'short.json'"));
+    EXPECT_TRUE(contains(message, "time.timeStep"));
+    EXPECT_TRUE(contains(message, "steps per frame"));
+    EXPECT_TRUE(contains(message, "1e+09 allowed"));
+
+    message = setupErrorOf(R"({
+        "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+        "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}],
+        "particles": {"count": 1000},
+        "fluid": {"restDensity": 0.001, "viscosity": 999999}
+    })",
+                           "viscous.json");
+    EXPECT_TRUE(contains(message, "the stable limit")) << message;
+    EXPECT_TRUE(contains(message, "steps per frame"));
+
+    // A frame rate so low that one frame takes more than 1e9 steps.
+    message = setupErrorOf(R"({
+        "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+        "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}],
+        "particles": {"count": 1000},
+        "time": {"frameRate": 1e-300}
+    })",
+                           "slow.json");
+    EXPECT_TRUE(contains(message, "steps per frame")) << message;
 }
 
 }  // namespace
