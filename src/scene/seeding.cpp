@@ -142,6 +142,7 @@ SceneSeeds sceneSeeds(const Scene& scene, double d, std::int64_t limit) {
     if (!(latticePoints <= 1e18)) {
         seeds.overLimit = true;
         seeds.count = std::numeric_limits<std::int64_t>::max();
+        seeds.estimate = latticePoints;
         return seeds;
     }
     const SeedShapes shapes = seeds.shapes();
@@ -163,6 +164,7 @@ SceneSeeds sceneSeeds(const Scene& scene, double d, std::int64_t limit) {
     if (estimate > 1.05 * double(limit)) {
         seeds.overLimit = true;
         seeds.count = std::int64_t(std::min(estimate, 9e18));
+        seeds.estimate = estimate;
         return seeds;
     }
     for (std::size_t n = 0; n < seeds.lattices.size() && seeds.count <= limit; ++n) {
@@ -195,6 +197,7 @@ SceneSeeds sceneSeeds(const Scene& scene, double d, std::int64_t limit) {
         }
     }
     seeds.overLimit = seeds.count > limit;
+    seeds.estimate = double(seeds.count);
     return seeds;
 }
 

@@ -104,6 +104,9 @@ struct SceneSeeds {
     // Counting stopped past the limit sceneSeeds was given: count is then at least the limit
     // (estimated, from a coarser lattice, or counted until past it); lattices may be incomplete.
     bool overLimit = false;
+    // With overLimit: the particles estimated, as a double (the lattice points of lone blocks,
+    // exact; past 1e18 lattice points, their number, as no integer holds it).
+    double estimate = 0;
 
     bool empty() const { return lattices.empty(); }
     // Whether a backend can seed these without the host (no mesh obstacles).

@@ -176,7 +176,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
                          " m; make the blocks or spheres larger or the spacing smaller");
     }
     if (seeds.overLimit) {
-        throw budget.tooMany(where, double(seeds.count), d, true);
+        throw budget.tooMany(where, seeds.estimate, d, true);
     }
     // Smoothing radius and mass (§5.2: mass from density, volume and count). The lattice sum
     // corrects the mass so that the initial lattice sits exactly at the rest density; without

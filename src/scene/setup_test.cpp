@@ -718,6 +718,13 @@ TEST(Setup, TooManyParticlesFailBeforeSeedingNamingWhatFits) {
     }
     EXPECT_LT(secondsSince(start), 2.0 * 6);  // six scenes, each well under 2 s
 
+    // Past what an int64 holds, the count is still told as it is (it read 4.7e18 for 1.4e23).
+    message = setupErrorWith(R"({"container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+                                 "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}],
+                                 "particles": {"spacing": 1e-8}})",
+                             options);
+    EXPECT_TRUE(contains(message, "about 5e+23 particles at spacing 1e-08 m")) << message;
+
     // Without a backend given, only the seeded arrays are counted against host memory.
     options.backend.reset();
     options.particleCount = 2147483647;
