@@ -93,6 +93,14 @@ std::string describeFault(const FaultRecord& fault, const SphParams& params) {
         case FaultCode::Escaped:
             msg << "a particle left the container";
             break;
+        case FaultCode::Compressed:
+            msg << "a particle's density reached " << fault.value
+                << " times the rest density, past the bound of " << params.maxDensityRatio
+                << " (limits.maxCompression)";
+            break;
+        case FaultCode::Collapsed:
+            msg << "particles collapsed onto one point (the kernel no longer pushes them apart)";
+            break;
         default:
             msg << "unknown fault code " << fault.code;
     }
