@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/frame_formats.h"
+#include "io/frame_reader.h"
 
 namespace weir {
 
@@ -104,7 +105,9 @@ std::vector<FrameEntry> readFrameIndex(const std::string& dir) {
 }
 
 HostParticles readFrameFile(const std::string& path) {
-    return frameFormatOfFile(path).entry().read(path, nullptr);
+    HostParticles particles = frameFormatOfFile(path).entry().read(path, nullptr);
+    checkFramePositions(particles, path);
+    return particles;
 }
 
 }  // namespace weir

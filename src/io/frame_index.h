@@ -37,7 +37,8 @@ struct RunRecord {
 RunRecord readRunRecord(const std::string& dir);
 
 // Reads a frame by its extension, through the format table (io/frame_formats.h); throws IoError
-// naming the file for an extension no format has.
+// naming the file for an extension no format has, and for positions that cannot be drawn or
+// meshed (checkFramePositions in io/frame_reader.h: not finite, or absurdly far).
 HostParticles readFrameFile(const std::string& path);
 
 }  // namespace weir

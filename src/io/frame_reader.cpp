@@ -1,7 +1,9 @@
 // Frame readers: a minimal VTU header parser with appended-block bounds checks, PLY, CSV.
 #include "io/frame_reader.h"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -102,6 +104,12 @@ class VtuFile {
         if (pieces.size() != 1 || !parseNumber(pieces[0]["NumberOfPoints"], numberOfPoints_)) {
             fail("expected one <Piece> with a NumberOfPoints");
         }
+        // Every point takes at least 12 bytes (its position as Float32): a count past what the
+        // file can hold is refused before anything is allocated (or a byte count overflows).
+        if (numberOfPoints_ > bytes_.size() / 12) {
+            fail("NumberOfPoints=\"" + std::to_string(numberOfPoints_) + "\" is more than the " +
+                 std::to_string(bytes_.size()) + " bytes of the file can hold");
+        }
         for (Attributes& dataArray : tagsNamed(header, "DataArray")) {
             parseDataArray(dataArray);
         }
@@ -190,8 +198,10 @@ class VtuFile {
         }
         if (!parseNumber(attributes["offset"], array.offset) ||
             (attributes.count("NumberOfComponents") &&
-             !parseNumber(attributes["NumberOfComponents"], array.components))) {
-            fail("DataArray '" + name + "' has a bad offset or NumberOfComponents");
+             !parseNumber(attributes["NumberOfComponents"], array.components)) ||
+            array.components == 0 || array.components > 16) {
+            fail("DataArray '" + name + "' has a bad offset or NumberOfComponents (allowed: " +
+                 "1..16)");
         }
         arrays_[name] = array;
     }
@@ -372,6 +382,54 @@ HostParticles readCsv(const std::string& path) {
         }
     }
     return particles;
+}
+
+void checkFramePositions(const HostParticles& particles, const std::string& path) {
+    const std::vector<Real>* axes[3] = {&particles.x, &particles.y, &particles.z};
+    const char* names[3] = {"x", "y", "z"};
+    const std::size_t n = particles.size();
+    auto refuse = [&](std::size_t i, int axis, const std::string& why) {
+        malformed(path, "particle " + std::to_string(i) + " of " + std::to_string(n) + " has " +
+                            names[axis] + " = " + numberText((*axes[axis])[i]) + " (" + why + ")");
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+        for (int axis = 0; axis < 3; ++axis) {
+            const Real value = (*axes[axis])[i];
+            if (!std::isfinite(value)) {
+                refuse(i, axis, "positions must be finite numbers");
+            }
+            if (std::fabs(value) > kMaxFrameCoordinate) {
+                refuse(i, axis, "positions must lie within " + numberText(kMaxFrameCoordinate) +
+                                    " m of the origin");
+            }
+        }
+    }
+    // The plausible extent from a sample of at most 65536 particles, so a few flung far away
+    // (or a whole frame gone wrong) do not widen it.
+    const std::size_t stride = std::max<std::size_t>(1, n / 65536);
+    double extent = 1.0;
+    std::vector<Real> sample;
+    for (int axis = 0; axis < 3 && n > 0; ++axis) {
+        sample.clear();
+        for (std::size_t i = 0; i < n; i += stride) {
+            sample.push_back((*axes[axis])[i]);
+        }
+        const std::size_t lo = sample.size() / 100;
+        const std::size_t hi = sample.size() - 1 - sample.size() / 100;
+        std::nth_element(sample.begin(), sample.begin() + lo, sample.end());
+        extent = std::max(extent, std::fabs(double(sample[lo])));
+        std::nth_element(sample.begin(), sample.begin() + hi, sample.end());
+        extent = std::max(extent, std::fabs(double(sample[hi])));
+    }
+    const double limit = kAbsurdExtentFactor * extent;
+    for (std::size_t i = 0; i < n; ++i) {
+        for (int axis = 0; axis < 3; ++axis) {
+            if (std::fabs((*axes[axis])[i]) > limit) {
+                refuse(i, axis, "more than 1e6 times the frame's plausible extent " +
+                                    numberText(extent) + " m from the origin");
+            }
+        }
+    }
 }
 
 }  // namespace weir

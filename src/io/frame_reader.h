@@ -24,4 +24,14 @@ HostParticles readPly(const std::string& path);
 // Reads a .csv written by writeCsv (the header must match exactly).
 HostParticles readCsv(const std::string& path);
 
+// The readers above return what the file holds, NaN included (a frame of a run that blew up is
+// still worth reading). Drawing or meshing a frame needs its positions to be real:
+// checkFramePositions throws IoError naming the file, the particle index, the field (x, y or z)
+// and the value when a position is not finite, lies past kMaxFrameCoordinate, or lies further
+// than kAbsurdExtentFactor times the frame's plausible extent from the origin (the extent: the
+// largest |coordinate| of the 1st..99th percentiles of every axis, at least 1 m).
+inline constexpr double kMaxFrameCoordinate = 1e9;  // m; weir's scenes are metres to kilometres
+inline constexpr double kAbsurdExtentFactor = 1e6;
+void checkFramePositions(const HostParticles& particles, const std::string& path);
+
 }  // namespace weir

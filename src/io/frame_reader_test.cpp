@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
+
 #include "io/csv_writer.h"
 #include "io/io_test_support.h"
 #include "io/ply_writer.h"
@@ -100,6 +103,66 @@ TEST(FrameReader, MalformedCsvNamesTheLine) {
     expectIoError(readCsv, dir / "bad.csv", "header");
     test::writeText(dir / "bad.csv", header + "1,2,3,4,5,6,7,8");
     expectIoError(readCsv, dir / "bad.csv", "truncated");
+}
+
+TEST(FrameReader, CountsPastTheFileAreRefusedBeforeAllocating) {
+    TempDir dir;
+    writeVtu(dir / "f.vtu", test::randomParticles(4), 1.0);
+    std::string text = test::fileText(dir / "f.vtu");
+    text.replace(text.find("NumberOfPoints=\"4\""), 18, "NumberOfPoints=\"4611686018427387904\"");
+    test::writeText(dir / "many.vtu", text);
+    expectIoError(readVtuOnly, dir / "many.vtu", "NumberOfPoints=\"4611686018427387904\" is more");
+    writePly(dir / "f.ply", test::randomParticles(4));
+    text = test::fileText(dir / "f.ply");
+    text.replace(text.find("element vertex 4"), 16, "element vertex 4000000000");
+    test::writeText(dir / "many.ply", text);
+    expectIoError(readPly, dir / "many.ply", "4000000000 vertices");
+}
+
+// Expects checkFramePositions to refuse particles with `detail` in the message.
+void expectPositionsRefused(const HostParticles& particles, const std::string& detail) {
+    try {
+        checkFramePositions(particles, "frames/frame_00007.csv");
+        ADD_FAILURE() << "accepted: " << detail;
+    } catch (const IoError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("frames/frame_00007.csv"), std::string::npos) << message;
+        EXPECT_NE(message.find(detail), std::string::npos) << message;
+    }
+}
+
+TEST(FrameReader, NonFiniteOrAbsurdPositionsAreRefusedWithTheParticleAndValue) {
+    HostParticles particles = test::randomParticles(200);  // within 1 m of the origin
+    for (auto* axis : {&particles.x, &particles.y, &particles.z}) {
+        for (Real& value : *axis) {
+            value /= 1000;
+        }
+    }
+    EXPECT_NO_THROW(checkFramePositions(particles, "ok.csv"));
+    EXPECT_NO_THROW(checkFramePositions(HostParticles{}, "empty.csv"));
+    HostParticles bad = particles;
+    bad.y[17] = std::numeric_limits<Real>::quiet_NaN();
+    expectPositionsRefused(bad, "particle 17 of 200 has y = nan (positions must be finite");
+    bad = particles;
+    bad.z[3] = -std::numeric_limits<Real>::infinity();
+    expectPositionsRefused(bad, "particle 3 of 200 has z = -inf");
+    bad = particles;
+    bad.x[150] = Real(3e38);
+    expectPositionsRefused(bad, "particle 150 of 200 has x = 3e+38");
+    // Past 1e6 times the plausible extent (about 1 m here) but under the absolute bound.
+    bad = particles;
+    bad.x[5] = Real(5e7);
+    expectPositionsRefused(bad, "particle 5 of 200 has x = 5e+07 (more than 1e6 times");
+    // Every particle far away: the absolute bound.
+    bad = particles;
+    std::fill(bad.x.begin(), bad.x.end(), Real(2e9));
+    expectPositionsRefused(bad, "particle 0 of 200 has x = 2e+09 (positions must lie within 1e+09");
+    // A small fluid 1 km from the origin is fine.
+    bad = particles;
+    for (Real& x : bad.x) {
+        x += 1000;
+    }
+    EXPECT_NO_THROW(checkFramePositions(bad, "far.csv"));
 }
 
 }  // namespace
