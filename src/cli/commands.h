@@ -61,8 +61,10 @@ struct BenchOptions {
 
 struct ValidateOptions {
     std::string backend = "auto";
-    int tankResolution = 15;    // particles over the tank's water depth
-    int columnResolution = 12;  // particles across the dam-break column
+    std::string model;          // fluid.model of every case; "" the scenes' default
+    std::string cases = "hydrostatic,dam-break";  // of hydrostatic, dam-break, viscous
+    int tankResolution = 24;    // particles over the tank's water depth
+    std::vector<int> columnResolutions{12};  // particles across the dam-break column (a ladder)
     double damEndT = 5.0;       // dimensionless end time T = t sqrt(2 g / a)
     std::string outDir = "validate-out";
     bool noPlot = false;

@@ -204,7 +204,7 @@ int weirMain(int argc, char** argv) {
     CLI::App* renderCmd = app.add_subcommand(
         "render", "Render the frames of a run to PNG images (and an MP4 with ffmpeg), offscreen");
     renderCmd
-        ->add_option("frames", render.framesDir,
+        ->add_option("FRAMES_DIR", render.framesDir,
                      "Frames directory written by `weir run` (holds frames.json)")
         ->required();
     renderCmd->add_option("--out,-o", render.outDir, "Images directory (default FRAMES/images)");
@@ -233,7 +233,7 @@ int weirMain(int argc, char** argv) {
     CLI::App* meshCmd = app.add_subcommand(
         "mesh", "Reconstruct the fluid surface of each frame (marching cubes): OBJ and PLY files");
     meshCmd
-        ->add_option("frames", mesh.framesDir,
+        ->add_option("FRAMES_DIR", mesh.framesDir,
                      "Frames directory written by `weir run` (holds frames.json)")
         ->required();
     meshCmd->add_option("--out,-o", mesh.outDir, "Mesh directory (default FRAMES/mesh)");
@@ -300,8 +300,9 @@ int weirMain(int argc, char** argv) {
     ValidateOptions validate;
     CLI::App* validateCmd = app.add_subcommand(
         "validate",
-        "Check the physics: a hydrostatic tank and the Martin & Moyce (1952) dam break, with "
-        "tolerances; writes CSV, JSON and PNG plots");
+        "Check the physics: a hydrostatic tank, the Martin & Moyce (1952) dam break over a "
+        "resolution ladder and a viscous dam break, with tolerances; writes CSV, JSON and PNG "
+        "plots");
     validateCmd->add_option("--backend", validate.backend, "auto (GPU if present), cuda or cpu")
         ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
         ->capture_default_str();
@@ -311,9 +312,21 @@ int weirMain(int argc, char** argv) {
         ->transform(countOption(6, 400))
         ->capture_default_str();
     validateCmd
-        ->add_option("--column-resolution", validate.columnResolution,
-                     "Particles across the dam-break column's width")
+        ->add_option("--column-resolution", validate.columnResolutions,
+                     "Particles across the dam-break column's width; several (e.g. 12,24,48) run "
+                     "a resolution ladder, the finest held to the tolerances")
+        ->delimiter(',')
         ->transform(countOption(6, 400))
+        ->capture_default_str();
+    validateCmd
+        ->add_option("--model", validate.model,
+                     "fluid.model of every case: paper or delta-sph (default: the scenes' own "
+                     "default)")
+        ->check(CLI::IsMember({"paper", "delta-sph"}));
+    validateCmd
+        ->add_option("--cases", validate.cases,
+                     "Comma-separated cases: hydrostatic, dam-break (Martin & Moyce, over the "
+                     "ladder), viscous (water, oil, honey at the coarsest rung)")
         ->capture_default_str();
     validateCmd
         ->add_option("--end-time", validate.damEndT,

@@ -1,7 +1,9 @@
-// `weir validate`: runs the hydrostatic tank and the Martin & Moyce dam break, prints each check
-// against its tolerance and writes results and plots.
+// `weir validate`: runs the hydrostatic tank, the Martin & Moyce dam break over a resolution
+// ladder and the viscous dam break, prints each check against its tolerance and writes results
+// and plots.
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
 #include "cli/commands.h"
 #include "core/check.h"
@@ -13,17 +15,28 @@ int validateCommand(const ValidateOptions& options) {
     try {
         ValidationOptions o;
         o.backend = parseBackend(options.backend);
+        o.model = options.model;
         o.tankResolution = options.tankResolution;
-        o.columnResolution = options.columnResolution;
+        o.columnResolutions = options.columnResolutions;
         o.damEndT = options.damEndT;
-        std::cerr << "weir validate: hydrostatic tank (" << o.tankResolution
-                  << " particles over the depth) and Martin & Moyce dam break ("
-                  << o.columnResolution << " across the column) on " << backendName(o.backend)
-                  << "\n";
+        o.hydrostatic = o.damBreak = o.viscous = false;
+        std::stringstream cases(options.cases);
+        for (std::string c; std::getline(cases, c, ',');) {
+            if (c == "hydrostatic") {
+                o.hydrostatic = true;
+            } else if (c == "dam-break") {
+                o.damBreak = true;
+            } else if (c == "viscous") {
+                o.viscous = true;
+            } else {
+                std::cerr << "weir validate: --cases: unknown case \"" << c
+                          << "\"; allowed are hydrostatic, dam-break, viscous\n";
+                return kExitUsage;
+            }
+        }
+        std::cerr << "weir validate: fluid model " << (o.model.empty() ? "default" : o.model)
+                  << " on " << backendName(o.backend) << "\n";
         ValidationReport report = runValidation(o);
-        std::cerr << "weir validate: tank " << report.tankParticles << " particles in "
-                  << report.tankSeconds << " s, dam break " << report.columnParticles
-                  << " particles in " << report.damSeconds << " s\n";
         for (const ValidationCheck& c : report.checks) {
             char line[400];
             std::snprintf(line, sizeof line, "  %s  %-95s %.4g (tolerance %.4g)",

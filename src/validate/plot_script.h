@@ -8,7 +8,7 @@ namespace weir {
 inline constexpr const char* kValidationPlotScript = R"PY(#!/usr/bin/env python3
 """Plots weir validate results: hydrostatic pressure profile and Martin & Moyce surge front.
 
-Usage: python3 plot.py DIR   (reads DIR/*.csv, writes DIR/hydrostatic.png, DIR/dam_break.png)
+Usage: python3 plot.py DIR   (reads DIR/*.csv, writes DIR/hydrostatic.png, dam_break.png, viscous_dam_break.png)
 """
 import csv
 import os
@@ -27,39 +27,58 @@ def rows(path):
 
 def main(d):
     h = rows(os.path.join(d, "hydrostatic.csv"))
-    y = [float(r["y"]) for r in h]
-    p = [float(r["pressure"]) for r in h]
-    ref = [float(r["reference"]) for r in h]
-    tol = [float(r["tolerance"]) for r in h]
-    fig, ax = plt.subplots(figsize=(5, 5))
-    ax.fill_betweenx(y, [a - t for a, t in zip(ref, tol)], [a + t for a, t in zip(ref, tol)],
-                     color="C0", alpha=0.2, label="tolerance")
-    ax.plot(ref, y, "C0-", label="rho0 g depth")
-    ax.plot(p, y, "C3o", label="weir (layer means)")
-    ax.set_xlabel("pressure [Pa]")
-    ax.set_ylabel("height above floor [m]")
-    ax.set_title("Hydrostatic tank")
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(os.path.join(d, "hydrostatic.png"), dpi=120)
+    if h:
+        y = [float(r["y"]) for r in h]
+        p = [float(r["pressure"]) for r in h]
+        ref = [float(r["reference"]) for r in h]
+        tol = [float(r["tolerance"]) for r in h]
+        fig, ax = plt.subplots(figsize=(5, 5))
+        ax.fill_betweenx(y, [a - t for a, t in zip(ref, tol)], [a + t for a, t in zip(ref, tol)],
+                         color="C0", alpha=0.2, label="tolerance")
+        ax.plot(ref, y, "C0-", label="rho0 g depth")
+        ax.plot(p, y, "C3o", label="weir (layer means)")
+        ax.set_xlabel("pressure [Pa]")
+        ax.set_ylabel("height above floor [m]")
+        ax.set_title("Hydrostatic tank")
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(os.path.join(d, "hydrostatic.png"), dpi=120)
 
-    sim = rows(os.path.join(d, "dam_break.csv"))
     ref = rows(os.path.join(d, "martin_moyce_1952.csv"))
-    fig, ax = plt.subplots(figsize=(6, 4.5))
     rt = [float(r["T"]) for r in ref]
-    ax.fill_between(rt, [float(r["band_low"]) for r in ref], [float(r["band_high"]) for r in ref],
-                    color="C0", alpha=0.2, label="tolerance band")
-    ax.plot(rt, [float(r["Z"]) for r in ref], "C0s", label="Martin & Moyce 1952, n^2 = 2")
-    ax.plot([0] + [float(r["T"]) for r in sim], [1] + [float(r["Z"]) for r in sim], "C3-",
-            label="weir")
-    ax.set_xlim(0, max(float(r["T"]) for r in sim) + 0.5)
-    ax.set_ylim(0, max(float(r["Z"]) for r in sim) + 1.5)
-    ax.set_xlabel("T = t sqrt(2 g / a)")
-    ax.set_ylabel("Z = z / a")
-    ax.set_title("Dam break: surge front")
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(os.path.join(d, "dam_break.png"), dpi=120)
+
+    def fronts(name):
+        runs = {}
+        for r in rows(os.path.join(d, name)):
+            runs.setdefault((r["fluid"], int(r["resolution"]), int(r["particles"])), []).append(
+                (float(r["T"]), float(r["Z"])))
+        return runs
+
+    for name, title, key in (("dam_break", "Dam break: surge front, resolution ladder", "res"),
+                             ("viscous_dam_break", "Dam break: water, oil and honey", "fluid")):
+        runs = fronts(name + ".csv")
+        if not runs:
+            continue
+        fig, ax = plt.subplots(figsize=(6, 4.5))
+        ax.fill_between(rt, [float(r["band_low"]) for r in ref],
+                        [float(r["band_high"]) for r in ref], color="C0", alpha=0.15,
+                        label="Martin & Moyce +- 15%")
+        ax.plot(rt, [float(r["Z"]) for r in ref], "C0s", label="Martin & Moyce 1952, n^2 = 2")
+        tmax = zmax = 0
+        for k, ((fluid, res, n), pts) in enumerate(sorted(runs.items(), key=lambda kv: kv[0][1])):
+            label = ("%d across (%d particles)" % (res, n)) if key == "res" else fluid
+            ax.plot([0] + [p[0] for p in pts], [1] + [p[1] for p in pts], "C%d-" % (k + 1),
+                    label="weir, " + label)
+            tmax = max(tmax, pts[-1][0])
+            zmax = max(zmax, max(p[1] for p in pts))
+        ax.set_xlim(0, tmax + 0.5)
+        ax.set_ylim(0, zmax + 1.5)
+        ax.set_xlabel("T = t sqrt(2 g / a)")
+        ax.set_ylabel("Z = z / a")
+        ax.set_title(title)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(os.path.join(d, name + ".png"), dpi=120)
 
 
 if __name__ == "__main__":
