@@ -63,9 +63,9 @@ TEST_F(BadFrames, MeshRefusesNonFiniteAndAbsurdPositions) {
 }
 
 TEST_F(BadFrames, RenderRefusesNonFiniteAndAbsurdPositions) {
-    if (weir("render --help").exitCode != 0) {
-        GTEST_SKIP() << "weir is built without rendering";
-    }
+#if !defined(WEIR_HAS_RENDER)
+    GTEST_SKIP() << "weir is built without rendering";
+#endif
     for (const char* value : {"nan", "-inf", "3e38"}) {
         SCOPED_TRACE(value);
         fs::remove_all(dir_ / "frames");

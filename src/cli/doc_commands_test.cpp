@@ -238,6 +238,16 @@ class DocCommands : public Cli {
                 continue;
             }
             std::string line = shrunk(c.command);
+#if !defined(WEIR_HAS_RENDER)
+            // A weir without rendering: `weir render` and `weir view` cannot run; `weir run
+            // --render` still writes the frames later commands read, without images.
+            if (std::regex_search(line, std::regex(R"(\bweir (render|view)\b)"))) {
+                std::cout << "[ skipped  ] " << where << " (built without rendering)\n";
+                ++skipped;
+                continue;
+            }
+            line = std::regex_replace(line, std::regex(R"( --render\b| --surface\b)"), "");
+#endif
             if (needs.display) {
                 line = "xvfb-run -a -s '-screen 0 640x480x24' " + line;
             }

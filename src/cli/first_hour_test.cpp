@@ -310,9 +310,11 @@ TEST_F(Cli, UnknownSceneNamesListTheBuiltInScenesWithADidYouMean) {
                          "drop_into_pool, geyser, splash_on_sphere, "
                          "tsunami_on_step, viscous_pour, wave_tank"));
 
+#if defined(WEIR_HAS_RENDER)  // without rendering, `weir view` stops before reading a scene
     const RunResult part = weir("view pool");
     EXPECT_EQ(part.exitCode, 1) << part.output;
     EXPECT_TRUE(contains(part.output, "did you mean 'drop_into_pool'?"));
+#endif
 
     const RunResult asFile = weir("run dam_break.json" + std::string(kCpu));
     EXPECT_EQ(asFile.exitCode, 1) << asFile.output;
