@@ -104,12 +104,35 @@ AxisHistogram setupHistogram(const SimulationSetup& setup, int axis, int bins) {
     return h;
 }
 
+// The axis the slabs split: the container's longest that has walls. The ghost copies of periodic
+// boundaries (solver/periodic_ghosts.h) work within each rank's particles, so the slab borders
+// must not cross a periodic face.
+static int slabAxis(const SphParams& params) {
+    int best = -1;
+    for (int a = 0; a < 3; ++a) {
+        const Real length = params.boxMax[a] - params.boxMin[a];
+        if (!isPeriodic(params, a) &&
+            (best < 0 || length > params.boxMax[best] - params.boxMin[best])) {
+            best = a;
+        }
+    }
+    if (best < 0) {
+        throw SimulationError(
+            "container.periodic: a distributed run splits the container into slabs along an axis "
+            "with walls, and all three axes are periodic here; run this scene as one process "
+            "(without mpirun), or give one axis walls");
+    }
+    return best;
+}
+
 DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend,
                                              NeighbourMode mode, SimulationSetup setup,
                                              DistributedOptions options)
     : comm_(comm), options_(options), decomposition_(0, {}) {
     total_ = setup.particleCount();
-    const int axis = longestAxis(setup.params.boxMin, setup.params.boxMax);
+    const int axis = setup.params.periodicAxes != 0
+                         ? slabAxis(setup.params)
+                         : longestAxis(setup.params.boxMin, setup.params.boxMax);
     const AxisHistogram histogram = setupHistogram(setup, axis, options.histogramBins);
     decomposition_ = balancedDecomposition(histogram, comm.size());
     haloWidth_ = 2.0 * double(setup.params.kernel.h);

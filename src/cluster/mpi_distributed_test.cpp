@@ -215,5 +215,51 @@ TEST(Distributed, BordersFollowTheFluid) {
     EXPECT_LT(imbalance(counts), 1.15);
 }
 
+// Periodic boundaries (container.periodic) along x and z: the slabs split y, the one axis with
+// walls, and each rank makes the periodic ghost copies of its own particles and of the halo it
+// received; the run gives the single-rank fluid. All three axes periodic leaves no axis to
+// split: refused.
+TEST(Distributed, PeriodicAxesMatchTheSingleRankRun) {
+    const std::string blocks = R"(
+        "blocks": [{"min": [0, 0, 0], "max": [0.16, 0.06, 0.08], "velocity": [0.5, 0, 0.2]},
+                   {"min": [0, 0.06, 0], "max": [0.08, 0.1, 0.08], "velocity": [-0.3, 0, 0]}],
+        "particles": {"spacing": 0.01}, "walls": {"model": "particles"}})";
+    const Scene scene = parseScene(R"({"container": {"min": [0, 0, 0], "max": [0.16, 0.12, 0.08],
+        "periodic": [true, false, true]},)" + blocks, "<test periodic channel>");
+    for (NeighbourMode mode : {NeighbourMode::Dense, NeighbourMode::Grid}) {
+        const SimulationSetup setup = buildSetup(scene, {}, nullptr);
+        auto plain = makeSimulation(Backend::Cpu, mode, setup);
+        DistributedSimulation distributed(world(), Backend::Cpu, mode, setup);
+        EXPECT_EQ(distributed.decomposition().axis(), 1);
+        plain->advanceTo(0.03);
+        distributed.advanceTo(0.03);
+        EXPECT_EQ(distributed.fault().code, 0);
+        HostParticles a, b;
+        plain->download(a);
+        distributed.download(b);
+        if (world().rank() == 0) {
+            ASSERT_EQ(a.size(), b.size());
+            double worst = 0;  // by the minimum image: a particle on a face is on both
+            for (std::size_t i = 0; i < a.size(); ++i) {
+                double d[3] = {a.x[i] - b.x[i], a.y[i] - b.y[i], a.z[i] - b.z[i]};
+                double r2 = 0;
+                for (int k = 0; k < 3; ++k) {
+                    const double length = scene.container.max[k] - scene.container.min[k];
+                    d[k] -= scene.periodic[std::size_t(k)] ? length * std::round(d[k] / length) : 0;
+                    r2 += d[k] * d[k];
+                }
+                worst = std::max(worst, std::sqrt(r2));
+            }
+            EXPECT_LT(worst, 1e-3 * setup.params.kernel.h) << neighbourModeName(mode);
+        }
+    }
+    const Scene allPeriodic = parseScene(R"({"container": {"min": [0, 0, 0],
+        "max": [0.16, 0.12, 0.08], "periodic": [true, true, true]},)" + blocks,
+                                         "<test periodic box>");
+    EXPECT_THROW(DistributedSimulation(world(), Backend::Cpu, NeighbourMode::Dense,
+                                       buildSetup(allPeriodic, {}, nullptr)),
+                 SimulationError);
+}
+
 }  // namespace
 }  // namespace weir

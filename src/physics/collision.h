@@ -1,6 +1,6 @@
 // The paper's simple collision response: particles put back on the container walls and off
 // obstacle boxes and spheres, losing their velocity into the surface (walls.model "simple", and the
-// safety net under boundary particles).
+// safety net under boundary particles); periodic axes have no walls but wrap around.
 #pragma once
 
 #include <cmath>
@@ -35,11 +35,29 @@ WEIR_HD inline void reflectVelocity(Vec3& v, const Vec3& n, const SphParams& par
     }
 }
 
+// On a periodic axis, a particle that left through one face comes back through the other (a step
+// moves a particle far less than the container's length).
+WEIR_HD inline void wrapPeriodic(Vec3& x, const SphParams& params) {
+    for (int a = 0; a < 3; ++a) {
+        if (isPeriodic(params, a)) {
+            const Real length = params.boxMax[a] - params.boxMin[a];
+            if (x[a] < params.boxMin[a]) {
+                x[a] += length;
+            } else if (x[a] >= params.boxMax[a]) {
+                x[a] -= length;
+            }
+        }
+    }
+}
+
 // The paper's simple collision response: particles are put back on the container walls and off
 // obstacle boxes and spheres, and lose their velocity into the surface.
 WEIR_HD inline void collide(Vec3& x, Vec3& v, const SphParams& params,
                             const ObstacleView& obstacles) {
     for (int a = 0; a < 3; ++a) {
+        if (isPeriodic(params, a)) {
+            continue;  // no wall there (wrapPeriodic)
+        }
         Vec3 n;
         if (x[a] < params.boxMin[a]) {
             x[a] = params.boxMin[a];

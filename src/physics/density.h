@@ -23,7 +23,8 @@ WEIR_HD inline Real densityAt(Index i, const ParticleView& pv, const Neighbours&
         i, [&](Index j) { sum += poly6(params.kernel, lengthSquared(xi - pv.position(j))); });
     const Real walls =
         params.walls == WallKind::Simple
-            ? wallDensity(params.wallWeight, params.boxMin, params.boxMax, params.restDensity, xi)
+            ? wallDensity(params.wallWeight, params.boxMin, params.boxMax, params.restDensity, xi,
+                          params.periodicAxes)
             : boundaryDensity(pv.boundary, params.kernel, xi);
     return params.mass * sum + walls;
 }

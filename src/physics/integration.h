@@ -28,6 +28,9 @@ WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
         v += a * dt;
     }
     collide(x, v, params, obstacles);
+    if (params.periodicAxes != 0) {
+        wrapPeriodic(x, params);
+    }
 
     const Real speed2 = lengthSquared(v);
     recordMax(&clock->maxSpeed2, speed2);

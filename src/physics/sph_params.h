@@ -50,6 +50,10 @@ struct SphParams {
     IntegratorKind integrator = IntegratorKind::SemiImplicitEuler;
 
     Vec3 boxMin, boxMax;   // container walls
+    // Bit a set: axis a is periodic (container.periodic): no walls on its two faces, a particle
+    // that leaves through one comes back through the other, and neighbours are found across
+    // them (solver/periodic_ghosts.h). 0: walls all round, and no extra work.
+    int periodicAxes = 0;
     Real restitution = 0;  // normal speed kept after a wall contact
     Real friction = 0;     // share of tangential speed removed on contact
     WallKind walls = WallKind::Simple;
@@ -69,5 +73,10 @@ struct SphParams {
     bool noSlip = false;           // walls: no-slip (true) or free slip
     Real maxDensityRatio = 0;      // blow-up bound on rho / rho0 (0: none)
 };
+
+// Whether axis a (0, 1, 2 for x, y, z) is periodic.
+WEIR_HD inline bool isPeriodic(const SphParams& params, int a) {
+    return ((params.periodicAxes >> a) & 1) != 0;
+}
 
 }  // namespace weir

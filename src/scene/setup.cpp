@@ -12,6 +12,7 @@
 #include "physics/kernels.h"
 #include "scene/boundary.h"
 #include "scene/lattice_seeder.h"
+#include "scene/periodic_walls.h"
 #include "scene/seeding.h"
 #include "solver/simulation.h"
 
@@ -407,6 +408,9 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
                        : IntegratorKind::SemiImplicitEuler;
     p.boxMin = Vec3(scene.container.min);
     p.boxMax = Vec3(scene.container.max);
+    for (int a = 0; a < 3; ++a) {
+        p.periodicAxes |= scene.periodic[std::size_t(a)] ? 1 << a : 0;  // solver/periodic_ghosts.h
+    }
     p.restitution = Real(scene.wallRestitution);
     p.friction = Real(scene.wallFriction);
     // Ten times the free-fall speed: splashes reach two or three times it, a blow-up far more.
@@ -520,7 +524,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             faceVelocity[std::size_t(2 * moving.axis + moving.side)] = moving.velocity;
         }
         setup.boundary =
-            buildBoundary(sampleBoundary(scene, d, h, boundaryLayers(h, d, deltaModel)),
+            buildBoundary(samplePeriodicBoundary(scene, d, h, boundaryLayers(h, d, deltaModel)),
                           scene.container, h, scene.restDensity, mass / scene.restDensity, kernel,
                           scene.movingWalls.empty() ? nullptr : &faceVelocity);
         p.walls = WallKind::Particles;

@@ -13,6 +13,7 @@
 #include "solver/method_registry.h"
 #include "solver/neighbour_search.h"
 #include "solver/particle_store.h"
+#include "solver/periodic_ghosts.h"
 #include "solver/pressure_solver.h"
 #include "solver/simulation.h"
 #include "solver/step_driver.h"
@@ -29,8 +30,19 @@ class SphSimulation final : public Simulation {
     SphSimulation(NeighbourMode mode, SimulationSetup setup)
         : params_(setup.params),
           methodName_(checkPressureSolver(setup.method)),
-          search_(mode, setup.grid, setup.particleCount(), setup.params.kernel.h),
-          method_(makePressureSolver<Exec>(methodName_, setup.params)) {
+          search_(mode, periodicGrid(setup.grid, setup.params), setup.particleCount(),
+                  setup.params.kernel.h),
+          method_(makePressureSolver<Exec>(methodName_, setup.params)),
+          periodic_(setup.params) {
+        checkPeriodicLengths(params_);
+        for (int a = 0; a < 3; ++a) {
+            if (isPeriodic(params_, a)) {
+                // The pressure is periodic too: a body force along a periodic axis (a channel's
+                // driving force) is not held by a hydrostatic pressure difference, so density
+                // diffusion has no hydrostatic part to leave alone there.
+                params_.hydrostaticGradient[a] = 0;
+            }
+        }
         if (setup.particles.size() == 0 && setup.seeder) {
             setup.seeder->seed(exec_, store_);  // on this backend, in the host's order
         } else {
@@ -68,7 +80,9 @@ class SphSimulation final : public Simulation {
     }
     void computeDensity() override {
         StepContext<Exec> s = context();
+        addPeriodicGhosts();
         method_->computeDensity(s);
+        dropPeriodicGhosts();
     }
     void runStage(Stage stage) override {
         StepContext<Exec> s = context();
@@ -123,7 +137,23 @@ class SphSimulation final : public Simulation {
     }
 
    private:
-    bool capturable() const { return search_.capturable() && method_->capturable(); }
+    // Periodic ghosts are counted on the host each step: no graph.
+    bool capturable() const {
+        return search_.capturable() && method_->capturable() && !periodic_.active();
+    }
+
+    // Ghost copies across the periodic faces for this step, and their removal after it, so that
+    // between steps the store holds the owned particles only (solver/periodic_ghosts.h).
+    void addPeriodicGhosts() {
+        if (periodic_.active()) {
+            periodic_.add(exec_, store_);
+        }
+    }
+    void dropPeriodicGhosts() {
+        if (periodic_.active()) {
+            periodic_.drop(exec_, store_);
+        }
+    }
 
     StepContext<Exec> context() {
         const ObstacleView obstacles{boxes_.data(), int(boxes_.size()), spheres_.data(),
@@ -134,7 +164,9 @@ class SphSimulation final : public Simulation {
 
     void stepNow() {
         StepContext<Exec> s = context();
+        addPeriodicGhosts();
         method_->step(s);
+        dropPeriodicGhosts();
         if (exec_.timing) {
             exec_.collectTimes(times_);
         }
@@ -170,6 +202,7 @@ class SphSimulation final : public Simulation {
     NeighbourSearch<Exec> search_;
     StepDriver<Exec> driver_;
     std::unique_ptr<PressureSolver<Exec>> method_;
+    PeriodicGhosts<Exec> periodic_;
     Buffer<FaultRecord> fault_;
     Buffer<ObstacleBox> boxes_;
     Buffer<ObstacleSphere> spheres_;

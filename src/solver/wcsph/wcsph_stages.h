@@ -86,7 +86,8 @@ WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighb
     force = Vec3(team.sum(force.x), team.sum(force.y), team.sum(force.z));
     const Vec3 walls =
         params.walls == WallKind::Simple
-            ? wallAcceleration(params.wallWeight, params.boxMin, params.boxMax, xi, rhoi, pi)
+            ? wallAcceleration(params.wallWeight, params.boxMin, params.boxMax, xi, rhoi, pi,
+                               params.periodicAxes)
             : boundaryAcceleration(pv.boundary, params.kernel, xi, vi.xyz(), rhoi, pi,
                                    params.wallViscosity, params.invRestDensity);
     return force / rhoi + params.gravity + walls;
@@ -154,7 +155,7 @@ WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, co
 // Walls of the simple model: the container planes push by the particle's own pressure
 // (physics/wall_weight.h).
 WEIR_HD inline Vec3 wallWeightAcceleration(const SphParams& p, const Vec3& x, Real rhoi, Real pi) {
-    return wallAcceleration(p.wallWeight, p.boxMin, p.boxMax, x, rhoi, pi);
+    return wallAcceleration(p.wallWeight, p.boxMin, p.boxMax, x, rhoi, pi, p.periodicAxes);
 }
 // ... and their share of the density changes as the particle moves through the wall weight
 // (d share / ds times the speed along the normal).
@@ -165,6 +166,9 @@ WEIR_HD inline Real wallWeightDensityRate(const SphParams& p, const Vec3& x, con
     const Real step = Real(1) / p.wallWeight.invStep;
     Real rate = 0;
     for (int a = 0; a < 3; ++a) {
+        if (isPeriodic(p, a)) {
+            continue;  // no planes there
+        }
         for (int side = 0; side < 2; ++side) {
             const Real s = side == 0 ? x[a] - p.boxMin[a] : p.boxMax[a] - x[a];
             Real share0, push0, share1, push1;
