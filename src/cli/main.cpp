@@ -326,7 +326,13 @@ int weirMain(int argc, char** argv) {
     validateCmd
         ->add_option("--cases", validate.cases,
                      "Comma-separated cases: hydrostatic, dam-break (Martin & Moyce, over the "
-                     "ladder), viscous (water, oil, honey at the coarsest rung)")
+                     "ladder), viscous (water, oil, honey at the coarsest rung), channels "
+                     "(start-up Poiseuille and Couette flow, Morris et al. 1997)")
+        ->capture_default_str();
+    validateCmd
+        ->add_option("--channel-resolution", validate.channelResolution,
+                     "Particles across the Poiseuille and Couette channels")
+        ->transform(countOption(6, 400))
         ->capture_default_str();
     validateCmd
         ->add_option("--end-time", validate.damEndT,

@@ -19,6 +19,7 @@ int validateCommand(const ValidateOptions& options) {
         o.tankResolution = options.tankResolution;
         o.columnResolutions = options.columnResolutions;
         o.damEndT = options.damEndT;
+        o.channelResolution = options.channelResolution;
         o.hydrostatic = o.damBreak = o.viscous = false;
         std::stringstream cases(options.cases);
         for (std::string c; std::getline(cases, c, ',');) {
@@ -28,9 +29,11 @@ int validateCommand(const ValidateOptions& options) {
                 o.damBreak = true;
             } else if (c == "viscous") {
                 o.viscous = true;
+            } else if (c == "channels") {
+                o.channels = true;
             } else {
                 std::cerr << "weir validate: --cases: unknown case \"" << c
-                          << "\"; allowed are hydrostatic, dam-break, viscous\n";
+                          << "\"; allowed are hydrostatic, dam-break, viscous, channels\n";
                 return kExitUsage;
             }
         }

@@ -8,7 +8,7 @@ namespace weir {
 inline constexpr const char* kValidationPlotScript = R"PY(#!/usr/bin/env python3
 """Plots weir validate results: hydrostatic pressure profile and Martin & Moyce surge front.
 
-Usage: python3 plot.py DIR   (reads DIR/*.csv, writes DIR/hydrostatic.png, dam_break.png, viscous_dam_break.png)
+Usage: python3 plot.py DIR   (reads DIR/*.csv, writes DIR/hydrostatic.png, dam_break.png, viscous_dam_break.png, channels.png)
 """
 import csv
 import os
@@ -79,6 +79,24 @@ def main(d):
         ax.legend(fontsize=8)
         fig.tight_layout()
         fig.savefig(os.path.join(d, name + ".png"), dpi=120)
+
+    ch = rows(os.path.join(d, "channels.csv"))
+    if ch:
+        fig, axes = plt.subplots(1, 2, figsize=(10, 4.5))
+        for ax, flow, scale in zip(axes, ("poiseuille", "couette"), ("u_max", "V0")):
+            pts = [r for r in ch if r["flow"] == flow]
+            for k, theta in enumerate(sorted({float(r["theta"]) for r in pts})):
+                sel = [r for r in pts if float(r["theta"]) == theta]
+                eta = [float(r["eta"]) for r in sel]
+                ax.plot([float(r["u_series"]) for r in sel], eta, "C%d-" % k,
+                        label="series, theta = %g" % theta)
+                ax.plot([float(r["u"]) for r in sel], eta, "C%do" % k, ms=4)
+            ax.set_xlabel("u / " + scale)
+            ax.set_ylabel("y / L")
+            ax.set_title("Start-up %s flow (dots: weir)" % flow.capitalize())
+            ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(os.path.join(d, "channels.png"), dpi=120)
 
 
 if __name__ == "__main__":

@@ -25,6 +25,7 @@ namespace weir {
 namespace {
 
 constexpr double kG = 9.81;
+constexpr double kPiD = 3.14159265358979323846;
 
 std::string num(double v) {
     std::ostringstream s;
@@ -320,6 +321,96 @@ void runViscous(const ValidationOptions& o, ValidationReport& r) {
                         honey / oil - 1, 0.0, ""});
 }
 
+// Start-up channel flow, Morris et al. 1997's set-up: L = 1 mm, water (nu = 1e-6), walls of
+// boundary particles (no-slip) at y = 0 and L, periodic along x and z. Poiseuille: body force
+// F = 1e-4 m/s^2 along x (u_max = 1.25e-5 m/s); Couette: the top wall slides at V0 = 1.25e-5 m/s.
+// The speed of sound is set to 10 times the flow's speed, as in the paper (stiffness c^2).
+ChannelRun runChannel(const ValidationOptions& o, const std::string& flow) {
+    const double L = 1e-3, nu = 1e-6, F = 1e-4, scale = F * L * L / (8 * nu);
+    const int n = o.channelResolution;
+    const double d = L / n, lx = 8 * d, lz = 6 * d, c = 10 * scale;
+    const bool poiseuille = flow == "poiseuille";
+    const std::string json =
+        R"({"name": "validate_)" + flow + R"(",
+        "container": {"min": [0, 0, 0], "max": )" + box(lx, L, lz) +
+        R"(, "periodic": [true, false, true]},
+        "blocks": [{"min": [0, 0, 0], "max": )" + box(lx, L, lz) + R"(}],
+        "fluid": {"preset": "water", "restDensity": 1000, "viscosity": 0.001, "stiffness": )" +
+        num(c * c) + (o.model.empty() ? "" : R"(, "model": ")" + o.model + R"(")") + R"(},
+        "particles": {"spacing": )" + num(d) + R"(},
+        "gravity": )" + (poiseuille ? box(F, 0, 0) : box(0, 0, 0)) + R"(,
+        "walls": {"model": "particles", "slip": "no-slip")" +
+        (poiseuille ? std::string()
+                    : R"(, "moving": [{"face": "+y", "velocity": )" + box(scale, 0, 0) + "}]") +
+        R"(},
+        "limits": {"maxSpeed": )" + num(100 * scale) + R"(},
+        "time": {"duration": 0.5, "frameRate": 40}})";
+    Scene scene = parseScene(json, "<validate " + flow + ">");
+    SetupReport setupReport;
+    SimulationSetup setup = buildSetup(scene, {}, &setupReport);
+    auto sim = makeSimulation(o.backend, NeighbourMode::Auto, std::move(setup));
+    ChannelRun run;
+    run.flow = flow;
+    run.resolution = n;
+    run.particles = int(sim->particleCount());
+    say(o, flow + " flow, " + std::to_string(n) + " across the channel, " +
+               std::to_string(run.particles) + " particles");
+    for (int layer = 0; layer < n; ++layer) {
+        run.eta.push_back((layer + 0.5) / n);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    HostParticles p;
+    for (double theta : {0.0225, 0.045, 0.1125, 0.225, 0.5}) {
+        sim->advanceTo(theta * L * L / nu);
+        if (sim->fault().code != 0) {
+            throw SimulationError(flow + " flow: " + describeFault(sim->fault(), sim->params()));
+        }
+        sim->download(p);
+        std::vector<double> sum(std::size_t(n), 0.0);
+        std::vector<int> count(std::size_t(n), 0);
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            const int layer = std::clamp(int(std::floor(double(p.y[i]) / d)), 0, n - 1);
+            sum[std::size_t(layer)] += p.vx[i];
+            ++count[std::size_t(layer)];
+        }
+        std::vector<double> u, ref;
+        double error = 0;
+        for (int layer = 0; layer < n; ++layer) {
+            const double eta = run.eta[std::size_t(layer)];
+            u.push_back(count[std::size_t(layer)] > 0 ? sum[std::size_t(layer)] /
+                                                           count[std::size_t(layer)] / scale
+                                                     : 0);
+            ref.push_back(poiseuille ? poiseuilleVelocity(eta, theta) : couetteVelocity(eta, theta));
+            error = std::max(error, std::abs(u.back() - ref.back()));
+        }
+        run.theta.push_back(theta);
+        run.u.push_back(u);
+        run.uRef.push_back(ref);
+        run.error.push_back(error);
+    }
+    run.seconds = seconds(start);
+    return run;
+}
+
+void runChannels(const ValidationOptions& o, ValidationReport& r) {
+    for (const char* flow : {"poiseuille", "couette"}) {
+        r.channels.push_back(runChannel(o, flow));
+        const ChannelRun& run = r.channels.back();
+        double startup = 0;
+        for (std::size_t k = 0; k + 1 < run.error.size(); ++k) {
+            startup = std::max(startup, run.error[k]);
+        }
+        const std::string at = " (" + std::to_string(run.resolution) + " across)";
+        const std::string scale = std::string(flow) == "poiseuille" ? "u_max" : "V0";
+        r.checks.push_back({std::string(flow) + ": start-up profiles, max |u - u_series| / " +
+                                scale + " at theta 0.0225-0.225" + at,
+                            startup, kChannelStartupTolerance, ""});
+        r.checks.push_back({std::string(flow) + ": steady profile (theta 0.5), max |u - u_series| / " +
+                                scale + at,
+                            run.error.back(), kChannelSteadyTolerance, ""});
+    }
+}
+
 std::string modelName(const std::string& model) {
     return model.empty() ? "the scenes' default" : model;
 }
@@ -339,7 +430,32 @@ ValidationReport runValidation(const ValidationOptions& options) {
     if (options.viscous) {
         runViscous(options, report);
     }
+    if (options.channels) {
+        runChannels(options, report);
+    }
     return report;
+}
+
+double poiseuilleVelocity(double eta, double theta) {
+    // u / u_max = 4 eta (1 - eta) - sum_n 32 / (pi^3 (2n+1)^3) sin((2n+1) pi eta) e^{-(2n+1)^2
+    // pi^2 theta}
+    double u = 4 * eta * (1 - eta);
+    for (int k = 0; k < 200; ++k) {
+        const double m = 2 * k + 1;
+        u -= 32 / (kPiD * kPiD * kPiD * m * m * m) * std::sin(m * kPiD * eta) *
+             std::exp(-m * m * kPiD * kPiD * theta);
+    }
+    return u;
+}
+
+double couetteVelocity(double eta, double theta) {
+    // u / V0 = eta + sum_n 2 (-1)^n / (n pi) sin(n pi eta) e^{-n^2 pi^2 theta}
+    double u = eta;
+    for (int k = 1; k <= 2000; ++k) {
+        u += 2 * ((k % 2) != 0 ? -1.0 : 1.0) / (k * kPiD) * std::sin(k * kPiD * eta) *
+             std::exp(-double(k) * k * kPiD * kPiD * theta);
+    }
+    return u;
 }
 
 namespace {
@@ -386,6 +502,18 @@ bool writeValidation(const ValidationReport& r, const std::string& dir, bool plo
     }
     writeFronts(fs::path(dir) / "dam_break.csv", r.ladder);
     writeFronts(fs::path(dir) / "viscous_dam_break.csv", r.viscous);
+    {
+        std::ofstream f(fs::path(dir) / "channels.csv");
+        f << "flow,resolution,theta,eta,u,u_series\n";
+        for (const ChannelRun& run : r.channels) {
+            for (std::size_t k = 0; k < run.theta.size(); ++k) {
+                for (std::size_t l = 0; l < run.eta.size(); ++l) {
+                    f << run.flow << "," << run.resolution << "," << run.theta[k] << ","
+                      << run.eta[l] << "," << run.u[k][l] << "," << run.uRef[k][l] << "\n";
+                }
+            }
+        }
+    }
     {
         std::ofstream f(fs::path(dir) / "martin_moyce_1952.csv");
         f << "# Martin & Moyce 1952, Phil. Trans. R. Soc. A 244, 312-324, Fig. 3, n^2 = 2, "

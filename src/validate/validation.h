@@ -23,6 +23,8 @@ struct ValidationOptions {
     bool hydrostatic = true;    // the cases to run
     bool damBreak = true;
     bool viscous = false;       // water, oil and honey dam breaks at the coarsest ladder rung
+    bool channels = false;      // start-up Poiseuille and Couette flow (Morris et al. 1997)
+    int channelResolution = 20;  // particles across the channel
     bool quiet = false;
 };
 
@@ -32,6 +34,17 @@ struct ValidationCheck {
     double tolerance = 0;  // passes when value <= tolerance
     std::string unit;
     bool passed() const { return value <= tolerance; }
+};
+
+// One start-up channel flow: velocity profiles against the analytic series at the times theta.
+struct ChannelRun {
+    std::string flow;  // "poiseuille" or "couette"
+    int resolution = 0, particles = 0;
+    double seconds = 0;
+    std::vector<double> theta;                 // nu t / L^2 of each profile
+    std::vector<double> eta;                   // y / L of each layer
+    std::vector<std::vector<double>> u, uRef;  // [profile][layer], / the scale (u_max or V0)
+    std::vector<double> error;                 // max |u - uRef| per profile, / the scale
 };
 
 // One dam-break run: the front over time and its errors against Martin & Moyce.
@@ -58,6 +71,7 @@ struct ValidationReport {
     // Dam break, coarse to fine (the last is the one held to the tolerances), and the viscous
     // dam breaks.
     std::vector<FrontRun> ladder, viscous;
+    std::vector<ChannelRun> channels;
     int tankParticles = 0;
     double tankSeconds = 0;  // wall-clock
     bool passed() const {
@@ -82,11 +96,19 @@ constexpr double kFrontRmsRelativeTolerance = 0.10;  // RMS of (Z_sim - Z_ref) /
 constexpr double kFrontMaxRelativeTolerance = 0.15;  // max of |Z_sim - Z_ref| / Z_ref
 constexpr double kLadderGrowthTolerance = 0.02;  // a finer rung's RMS error may exceed the
                                                  // coarser's by at most this (noise)
+constexpr double kChannelSteadyTolerance = 0.02;   // max |u - u_ref| / scale at steady state
+constexpr double kChannelStartupTolerance = 0.05;  // during start-up
 constexpr double kViscousFrontRatio = 0.8;  // honey's front travel / water's, at most
 
 ValidationReport runValidation(const ValidationOptions& options);
 
-// Writes hydrostatic.csv, dam_break.csv (every rung), viscous_dam_break.csv,
+// Start-up plane Poiseuille flow between plates y = 0 and L driven by a body force F along x,
+// and Couette flow with the plate y = L moving at V0 (Morris, Fox & Zhu 1997): u / u_max with
+// u_max = F L^2 / (8 nu), and u / V0, at eta = y / L and theta = nu t / L^2 (series).
+double poiseuilleVelocity(double eta, double theta);
+double couetteVelocity(double eta, double theta);
+
+// Writes hydrostatic.csv, dam_break.csv (every rung), viscous_dam_break.csv, channels.csv,
 // martin_moyce_1952.csv, validation.json and plot.py to dir; runs python3 plot.py for the PNGs and
 // returns false (with a message) if it cannot.
 bool writeValidation(const ValidationReport& report, const std::string& dir, bool plots,

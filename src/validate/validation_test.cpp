@@ -7,6 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
 #include <iostream>
 
 namespace weir {
@@ -88,6 +92,50 @@ TEST(Validate, WaterOilAndHoneyGiveDifferentFronts) {
     for (const ValidationCheck& c : report.checks) {
         EXPECT_TRUE(c.passed()) << c.name << " = " << c.value << " > " << c.tolerance;
     }
+}
+
+// The analytic series that the channel checks compare against reproduce the published tables
+// (shared/data, computed there with 200 and 2000 terms), where those tables are beside the
+// checkout.
+TEST(Validate, ChannelSeriesMatchTheTabulatedMorrisSolutions) {
+    const std::filesystem::path data =
+        std::filesystem::path(WEIR_SOURCE_DIR).parent_path() / "shared" / "data";
+    int compared = 0;
+    for (const char* name : {"poiseuille_startup_morris1997.csv", "couette_startup_morris1997.csv"}) {
+        std::ifstream f(data / name);
+        if (!f) {
+            GTEST_SKIP() << "no " << (data / name) << " beside the checkout";
+        }
+        const bool poiseuille = std::string(name).rfind("poiseuille", 0) == 0;
+        std::string line;
+        std::vector<double> thetas;
+        while (std::getline(f, line)) {
+            if (line.empty() || line[0] == '#') {
+                continue;
+            }
+            std::stringstream cells(line);
+            std::string cell;
+            std::vector<std::string> row;
+            while (std::getline(cells, cell, ',')) {
+                row.push_back(cell);
+            }
+            if (thetas.empty()) {  // header: eta_y_over_L,theta_0.01,...,steady
+                for (std::size_t k = 1; k < row.size(); ++k) {
+                    thetas.push_back(row[k] == "steady" ? 100.0 : std::stod(row[k].substr(6)));
+                }
+                continue;
+            }
+            const double eta = std::stod(row[0]);
+            for (std::size_t k = 1; k < row.size(); ++k) {
+                const double u = poiseuille ? poiseuilleVelocity(eta, thetas[k - 1])
+                                            : couetteVelocity(eta, thetas[k - 1]);
+                EXPECT_NEAR(u, std::stod(row[k]), 2e-4) << name << " eta " << eta << " theta "
+                                                        << thetas[k - 1];
+                ++compared;
+            }
+        }
+    }
+    EXPECT_GT(compared, 200);
 }
 
 }  // namespace
