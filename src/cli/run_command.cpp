@@ -103,6 +103,9 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         setupOptions.seedOnDevice = launchedByMpi();
         const Backend backend = parseBackend(options.backend);
         setupOptions.backend = backend;  // a CPU run's particles must fit host memory twice over
+        if (backend == Backend::Cuda && !setupOptions.seedOnDevice && cudaDeviceAvailable()) {
+            setupOptions.deviceFreeBytes = cudaFreeMemoryBytes();  // checked before seeding
+        }
         SetupReport report;
         SimulationSetup setup = buildSetup(scene, setupOptions, &report);
         const NeighbourMode mode = resolveNeighbourMode(parseNeighbourMode(options.neighbours),

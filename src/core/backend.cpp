@@ -11,6 +11,7 @@ namespace weir {
 bool probeCudaDevice(std::string* description);  // core/exec_cuda.cu
 int useCudaDeviceOf(int rankOnHost);             // core/exec_cuda.cu
 int currentCudaDeviceOrdinal();                  // core/exec_cuda.cu
+std::size_t cudaDeviceFreeBytes();               // core/exec_cuda.cu
 #endif
 
 int currentCudaDevice() {
@@ -51,6 +52,14 @@ bool cudaDeviceAvailable() {
     return available;
 #else
     return false;
+#endif
+}
+
+std::size_t cudaFreeMemoryBytes() {
+#if defined(WEIR_HAS_CUDA)
+    return cudaDeviceAvailable() ? cudaDeviceFreeBytes() : 0;
+#else
+    return 0;
 #endif
 }
 

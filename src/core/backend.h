@@ -1,6 +1,7 @@
 // Which machine runs the step: all CPU cores (OpenMP) or an NVIDIA GPU (CUDA).
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace weir {
@@ -13,6 +14,8 @@ const char* backendName(Backend backend);
 
 // True when this binary has the CUDA backend and a CUDA device is visible.
 bool cudaDeviceAvailable();
+// Free memory of this process's CUDA device in bytes; 0 without CUDA or a device.
+std::size_t cudaFreeMemoryBytes();
 // Makes GPU (rankOnHost mod GPUs) this process's CUDA device, one GPU per rank of a distributed
 // run; returns its ordinal, or -1 without CUDA or GPUs. Call before any CUDA work.
 int selectCudaDevice(int rankOnHost);

@@ -180,6 +180,13 @@ std::size_t CudaExec::freeMemoryBytes() const {
     return freeBytes;
 }
 
+// The current device's free memory, without making an executor (no streams or pools).
+std::size_t cudaDeviceFreeBytes() {
+    std::size_t freeBytes = 0, totalBytes = 0;
+    WEIR_CUDA_CHECK(cudaMemGetInfo(&freeBytes, &totalBytes));
+    return freeBytes;
+}
+
 bool probeCudaDevice(std::string* description) {
     int count = 0;
     if (cudaGetDeviceCount(&count) != cudaSuccess || count == 0) {

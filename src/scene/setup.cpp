@@ -83,13 +83,18 @@ std::string fmt(double v) {
 struct HostBudget {
     std::size_t freeBytes = 0, usable = 0, perParticle = 0;
     std::int64_t maxParticles = kMaxParticles;
+    // A CUDA run with its device's free memory given: what the GPU holds, if less.
+    std::size_t deviceFreeBytes = 0, devicePerParticle = 0;
+    std::int64_t deviceMaxParticles = kMaxParticles;
 
     explicit HostBudget(const SetupOptions& options) {
         freeBytes = options.hostFreeBytes ? *options.hostFreeBytes : CpuExec().freeMemoryBytes();
         const std::size_t reserve = (std::size_t(256) << 20) + freeBytes / 10;
         usable = freeBytes > reserve ? freeBytes - reserve : 0;
+        // Seeded by the backend (a distributed run: each rank holds its share only): no limit
+        // but the ids' here; makeSimulation checks each rank's memory.
         perParticle = options.seedOnDevice ? 0 : 8 * sizeof(Real);  // HostParticles
-        if (options.backend == Backend::Cpu) {
+        if (options.backend == Backend::Cpu && !options.seedOnDevice) {
             perParticle += std::min(bytesPerParticleEstimate(NeighbourMode::Grid),
                                     bytesPerParticleEstimate(NeighbourMode::Dense));
         }
@@ -97,16 +102,37 @@ struct HostBudget {
             maxParticles = std::int64_t(
                 std::min<std::size_t>(std::size_t(kMaxParticles), usable / perParticle));
         }
+        if (options.backend == Backend::Cuda && options.deviceFreeBytes && !options.seedOnDevice) {
+            deviceFreeBytes = *options.deviceFreeBytes;
+            const std::size_t deviceReserve = (std::size_t(256) << 20) + deviceFreeBytes / 10;
+            const std::size_t deviceUsable =
+                deviceFreeBytes > deviceReserve ? deviceFreeBytes - deviceReserve : 0;
+            devicePerParticle = std::min(bytesPerParticleEstimate(NeighbourMode::Grid),
+                                         bytesPerParticleEstimate(NeighbourMode::Dense));
+            deviceMaxParticles = std::int64_t(std::min<std::size_t>(
+                std::size_t(kMaxParticles), deviceUsable / devicePerParticle));
+        }
     }
+    // The most particles that fit both.
+    std::int64_t limit() const { return std::min(maxParticles, deviceMaxParticles); }
 
     // The SceneError for `count` particles (about, when estimated) at spacing d.
     SceneError tooMany(const std::string& where, double count, double d, bool about) const {
         const std::string hint =
             "; use a larger particles.spacing, or a smaller particles.count or --particles";
-        if (count > double(kMaxParticles) && maxParticles == kMaxParticles) {
+        if (count > double(kMaxParticles) && limit() == kMaxParticles) {
             return SceneError(where + ": " + (about ? "about " : "") + fmt(count) +
                               " particles at spacing " + fmt(d) + " m exceed the limit of " +
                               std::to_string(kMaxParticles) + " (32-bit particle ids)" + hint);
+        }
+        if (deviceMaxParticles < maxParticles) {
+            return SceneError(where + ": " + (about ? "about " : "") + fmt(count) +
+                              " particles at spacing " + fmt(d) + " m need about " +
+                              fmt(count * double(devicePerParticle) / double(1 << 20)) +
+                              " MiB of GPU memory (" + std::to_string(devicePerParticle) +
+                              " bytes each) but the GPU has " +
+                              std::to_string(deviceFreeBytes >> 20) + " MiB free: at most " +
+                              std::to_string(deviceMaxParticles) + " particles fit" + hint);
         }
         return SceneError(where + ": " + (about ? "about " : "") + fmt(count) +
                           " particles at spacing " + fmt(d) + " m need about " +
@@ -152,7 +178,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
                               : (scene.spacing ? std::nullopt
                                                : std::optional<std::int64_t>(scene.particleCount.value_or(
                                                      kDefaultParticleCount)));
-    if (wantedCount && *wantedCount > budget.maxParticles) {
+    if (wantedCount && *wantedCount > budget.limit()) {
         throw budget.tooMany(where, double(*wantedCount),
                              std::cbrt(report.fluidVolume / double(*wantedCount)), true);
     }
@@ -171,7 +197,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     }
     const double d = report.spacing;
     SimulationSetup setup;
-    SceneSeeds seeds = sceneSeeds(scene, d, budget.maxParticles);
+    SceneSeeds seeds = sceneSeeds(scene, d, budget.limit());
     if (seeds.count == 0) {
         throw SceneError(where + ": the fluid holds no particle at spacing " + fmt(d) +
                          " m; make the blocks or spheres larger or the spacing smaller");

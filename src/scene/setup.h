@@ -25,6 +25,9 @@ struct SetupOptions {
     std::optional<Backend> backend;
     // Free host memory in bytes (unset: measured; tests set it).
     std::optional<std::size_t> hostFreeBytes;
+    // A CUDA run: the device's free memory in bytes (cudaFreeMemoryBytes()), so that particles
+    // the GPU cannot hold are refused before the host seeds them.
+    std::optional<std::size_t> deviceFreeBytes;
 };
 
 // What was chosen and why, for logs, --explain and benchmarks.

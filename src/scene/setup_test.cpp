@@ -734,6 +734,36 @@ TEST(Setup, TooManyParticlesFailBeforeSeedingNamingWhatFits) {
         << message;
 }
 
+// A CUDA run whose particles the GPU cannot hold fails before the host seeds them, naming the
+// GPU's memory and the most that fit there.
+TEST(Setup, TooManyParticlesForTheGpuFailBeforeSeeding) {
+    SetupOptions options;
+    options.hostFreeBytes = std::size_t(64) << 30;
+    options.deviceFreeBytes = std::size_t(2) << 30;
+    options.backend = Backend::Cuda;
+    options.particleCount = 100000000;
+    const std::size_t freeBytes = *options.deviceFreeBytes;
+    const std::size_t usable = freeBytes - (std::size_t(256) << 20) - freeBytes / 10;
+    const std::size_t fit = usable / std::min(bytesPerParticleEstimate(NeighbourMode::Grid),
+                                              bytesPerParticleEstimate(NeighbourMode::Dense));
+    const std::string message = setupErrorWith(R"({
+        "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+        "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}]
+    })",
+                                               options);
+    EXPECT_TRUE(contains(message, "GPU memory")) << message;
+    EXPECT_TRUE(contains(message, "at most " + std::to_string(fit) + " particles fit")) << message;
+    // Without the device's memory (a CPU run, or unknown) the host alone is checked.
+    options.deviceFreeBytes.reset();
+    options.particleCount = 1000;
+    EXPECT_NO_THROW(buildSetup(parseScene(R"({
+        "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+        "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}]
+    })",
+                                          "small.json"),
+                               options, nullptr));
+}
+
 // Walls of boundary particles too many for memory fail before they are sampled.
 TEST(Setup, TooManyBoundaryParticlesFailBeforeSampling) {
     SetupOptions options;
