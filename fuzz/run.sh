@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses (clang, address and undefined-behaviour sanitizers) in build-fuzz
 # and runs each for a while from its seed corpus; fails if any harness finds a crash, a hang, an
-# uncaught exception, a sanitizer report or an allocation past 2 GB.
+# uncaught exception, a sanitizer report, an input running 30 s or an allocation past 2 GB.
 # Usage: fuzz/run.sh [seconds-per-target] [target ...]   (default: 60 s, every target:
 #        scene obj stl vtu ply csv). WEIR_FUZZ_BUILD=DIR builds elsewhere.
 # What a run finds is kept in build-fuzz/: new inputs in corpus/TARGET/, reproducers in
@@ -50,7 +50,7 @@ for target in "${targets[@]}"; do
     mkdir -p "$corpus" "$build/crashes"
     log=$build/fuzz_$target.log
     echo "weir fuzz: $target for ${seconds} s"
-    if "$build/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    if "$build/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 \
         -max_len=16384 -print_final_stats=1 -artifact_prefix="$build/crashes/$target-" \
         "$corpus" "$root/fuzz/corpus/$target" >"$log" 2>&1; then
         grep -E "^Done [0-9]+ runs" "$log" | sed "s/^/weir fuzz: $target: /" || true
