@@ -35,9 +35,9 @@ inline void checkPeriodicLengths(const SphParams& params) {
         const double h = double(params.kernel.h);
         if (isPeriodic(params, a) && length < 2 * h) {
             std::ostringstream msg;
-            msg << "container.periodic: the container is " << length << " m long along "
-                << kAxis[a] << ", but a periodic axis needs at least two smoothing radii (2 h = "
-                << 2 * h << " m); make the container longer along " << kAxis[a]
+            msg << "container.periodic: the container is " << length << " m long along " << kAxis[a]
+                << ", but a periodic axis needs at least two smoothing radii (2 h = " << 2 * h
+                << " m); make the container longer along " << kAxis[a]
                 << " or the particles finer, or set that axis false";
             throw SimulationError(msg.str());
         }
