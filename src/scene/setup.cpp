@@ -226,9 +226,18 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         (deltaModel ? " (lattice sum of Wendland C2" : " (lattice sum of poly6") +
         ", so the initial fluid is at rest density)");
 
-    // Expected speeds: free fall over the deepest column, plus any initial speed.
-    const double g = length(scene.gravity);
-    Vec3d up = g > 0 ? scene.gravity / -g : Vec3d(0, 1, 0);
+    // Expected speeds: free fall over the deepest column, plus any initial speed. Gravity along a
+    // periodic axis is a body force that drives a flow (a channel's), not a weight that walls
+    // hold: no column stands on it, so it neither sets the fall height nor makes the fluid
+    // hydrostatic at rest.
+    Vec3d weight = scene.gravity;
+    for (int a = 0; a < 3; ++a) {
+        if (scene.periodic[std::size_t(a)]) {
+            weight[a] = 0;
+        }
+    }
+    const double g = length(weight);
+    Vec3d up = g > 0 ? weight / -g : Vec3d(0, 1, 0);
     double floor = 1e300, top = -1e300, initialSpeed = 0;
     for (int c = 0; c < 8; ++c) {
         Vec3d corner((c & 1) ? scene.container.max.x : scene.container.min.x,
@@ -462,7 +471,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         p.viscositySoftening = Real(0.01 * halfH * halfH);
         p.artificialViscosity = Real(alpha * c * halfH);
         p.densityDiffusion = Real(delta * c * halfH);
-        p.hydrostaticGradient = Vec3(scene.gravity * (scene.restDensity / (c * c)));
+        p.hydrostaticGradient = Vec3(weight * (scene.restDensity / (c * c)));
         p.noSlip = scene.noSlip;
         p.cflNumber = Real(cfl);
     }
