@@ -62,8 +62,9 @@ struct BenchOptions {
 struct ValidateOptions {
     std::string backend = "auto";
     std::string model;          // fluid.model of every case; "" the scenes' default
-    std::string cases = "hydrostatic,dam-break";  // of hydrostatic, dam-break, viscous, channels
+    std::string cases = "hydrostatic,dam-break";  // of hydrostatic, dam-break, viscous, channels, lobovsky
     int channelResolution = 20;                   // particles across the channel
+    int lobovskyResolution = 20;                  // particles over the Lobovsky column's height
     int tankResolution = 24;    // particles over the tank's water depth
     std::vector<int> columnResolutions{12};  // particles across the dam-break column (a ladder)
     double damEndT = 5.0;       // dimensionless end time T = t sqrt(2 g / a)

@@ -327,7 +327,13 @@ int weirMain(int argc, char** argv) {
         ->add_option("--cases", validate.cases,
                      "Comma-separated cases: hydrostatic, dam-break (Martin & Moyce, over the "
                      "ladder), viscous (water, oil, honey at the coarsest rung), channels "
-                     "(start-up Poiseuille and Couette flow, Morris et al. 1997)")
+                     "(start-up Poiseuille and Couette flow, Morris et al. 1997), lobovsky "
+                     "(Lobovsky et al. 2014: front and impact pressures)")
+        ->capture_default_str();
+    validateCmd
+        ->add_option("--lobovsky-resolution", validate.lobovskyResolution,
+                     "Particles over the height of the Lobovsky et al. column (H = 0.3 m)")
+        ->transform(countOption(6, 400))
         ->capture_default_str();
     validateCmd
         ->add_option("--channel-resolution", validate.channelResolution,

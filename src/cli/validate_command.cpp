@@ -20,6 +20,7 @@ int validateCommand(const ValidateOptions& options) {
         o.columnResolutions = options.columnResolutions;
         o.damEndT = options.damEndT;
         o.channelResolution = options.channelResolution;
+        o.lobovskyResolution = options.lobovskyResolution;
         o.hydrostatic = o.damBreak = o.viscous = false;
         std::stringstream cases(options.cases);
         for (std::string c; std::getline(cases, c, ',');) {
@@ -31,9 +32,11 @@ int validateCommand(const ValidateOptions& options) {
                 o.viscous = true;
             } else if (c == "channels") {
                 o.channels = true;
+            } else if (c == "lobovsky") {
+                o.lobovsky = true;
             } else {
                 std::cerr << "weir validate: --cases: unknown case \"" << c
-                          << "\"; allowed are hydrostatic, dam-break, viscous, channels\n";
+                          << "\"; allowed are hydrostatic, dam-break, viscous, channels, lobovsky\n";
                 return kExitUsage;
             }
         }

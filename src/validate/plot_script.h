@@ -8,7 +8,7 @@ namespace weir {
 inline constexpr const char* kValidationPlotScript = R"PY(#!/usr/bin/env python3
 """Plots weir validate results: hydrostatic pressure profile and Martin & Moyce surge front.
 
-Usage: python3 plot.py DIR   (reads DIR/*.csv, writes DIR/hydrostatic.png, dam_break.png, viscous_dam_break.png, channels.png)
+Usage: python3 plot.py DIR   (reads DIR/*.csv, writes DIR/hydrostatic.png, dam_break.png, viscous_dam_break.png, channels.png, lobovsky.png)
 """
 import csv
 import os
@@ -97,6 +97,36 @@ def main(d):
             ax.legend(fontsize=7)
         fig.tight_layout()
         fig.savefig(os.path.join(d, "channels.png"), dpi=120)
+
+    lf = rows(os.path.join(d, "lobovsky_front.csv"))
+    if lf:
+        ref = [(0.2859, 0.1995), (0.4765, 0.3815), (0.6671, 0.5529), (0.8578, 0.7349),
+               (1.0484, 0.9729), (1.2390, 1.2214), (1.4296, 1.4926), (1.6202, 1.7656),
+               (1.8108, 2.0561), (2.0014, 2.3675), (2.1921, 2.6895), (2.3827, 3.0062),
+               (2.5733, 3.3658)]
+        lp = rows(os.path.join(d, "lobovsky_pressure.csv"))
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
+        axes[0].plot([r[0] for r in ref], [r[1] for r in ref], "C0s",
+                     label="Lobovsky et al. 2014, H = 300 mm")
+        axes[0].plot([float(r["tau"]) for r in lf], [float(r["x_over_H"]) for r in lf], "C3-",
+                     label="weir")
+        axes[0].set_xlim(0, 3)
+        axes[0].set_xlabel("tau = t sqrt(g / H)")
+        axes[0].set_ylabel("(front - gate) / H")
+        axes[0].set_title("Lobovsky dam break: front (no time shift)")
+        axes[0].legend()
+        for k, (name, band) in enumerate((("sensor2", (1.7710, 2.0316)),
+                                          ("sensor3", (1.3338, 1.6494)),
+                                          ("sensor4", (0.7388, 1.1484)))):
+            axes[1].plot([float(r["tau"]) for r in lp], [float(r[name]) for r in lp],
+                         "C%d-" % k, lw=0.7, label="weir, " + name)
+            axes[1].axhspan(band[0], band[1], color="C%d" % k, alpha=0.15)
+        axes[1].set_xlabel("tau")
+        axes[1].set_ylabel("p / (rho g H)")
+        axes[1].set_title("Impact wall pressure (bands: measured peak, 2.5-97.5%)")
+        axes[1].legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(os.path.join(d, "lobovsky.png"), dpi=120)
 
 
 if __name__ == "__main__":

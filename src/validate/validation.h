@@ -4,6 +4,7 @@
 // documented tolerances (docs/physics.md).
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,8 @@ struct ValidationOptions {
     bool damBreak = true;
     bool viscous = false;       // water, oil and honey dam breaks at the coarsest ladder rung
     bool channels = false;      // start-up Poiseuille and Couette flow (Morris et al. 1997)
+    bool lobovsky = false;      // Lobovsky et al. 2014, H = 300 mm: front and wall pressures
+    int lobovskyResolution = 20;  // particles over the column's height H
     int channelResolution = 20;  // particles across the channel
     bool quiet = false;
 };
@@ -45,6 +48,18 @@ struct ChannelRun {
     std::vector<double> eta;                   // y / L of each layer
     std::vector<std::vector<double>> u, uRef;  // [profile][layer], / the scale (u_max or V0)
     std::vector<double> error;                 // max |u - uRef| per profile, / the scale
+};
+
+// The Lobovsky et al. (2014) dam break: front travel and the impact wall's pressure at sensors
+// 2-4, in tau = t sqrt(g / H), x / H and p / (rho g H).
+struct LobovskyRun {
+    int resolution = 0, particles = 0;
+    double seconds = 0;
+    std::vector<double> frontTau, frontX;        // (front - gate) / H
+    std::vector<double> pressureTau;             // sampling times of the sensors
+    std::vector<std::array<double, 3>> pressure;  // sensors 2, 3, 4
+    double frontRms = 0;                         // RMS of x_sim - x_ref, / the travel to the wall
+    std::array<double, 3> peak{}, peakTau{};     // of the 3-sample running mean
 };
 
 // One dam-break run: the front over time and its errors against Martin & Moyce.
@@ -72,6 +87,7 @@ struct ValidationReport {
     // dam breaks.
     std::vector<FrontRun> ladder, viscous;
     std::vector<ChannelRun> channels;
+    std::vector<LobovskyRun> lobovsky;
     int tankParticles = 0;
     double tankSeconds = 0;  // wall-clock
     bool passed() const {
@@ -98,7 +114,8 @@ constexpr double kLadderGrowthTolerance = 0.02;  // a finer rung's RMS error may
                                                  // coarser's by at most this (noise)
 constexpr double kChannelSteadyTolerance = 0.02;   // max |u - u_ref| / scale at steady state
 constexpr double kChannelStartupTolerance = 0.05;  // during start-up
-constexpr double kViscousFrontRatio = 0.8;  // honey's front travel / water's, at most
+constexpr double kViscousFrontRatio = 0.8;
+constexpr double kLobovskyFrontTolerance = 0.05;  // RMS front error / the 3.37 H to the wall  // honey's front travel / water's, at most
 
 ValidationReport runValidation(const ValidationOptions& options);
 
