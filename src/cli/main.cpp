@@ -300,9 +300,9 @@ int weirMain(int argc, char** argv) {
     ValidateOptions validate;
     CLI::App* validateCmd = app.add_subcommand(
         "validate",
-        "Check the physics: a hydrostatic tank, the Martin & Moyce (1952) dam break over a "
-        "resolution ladder and a viscous dam break, with tolerances; writes CSV, JSON and PNG "
-        "plots");
+        "Check the physics against analytic solutions and experiments (hydrostatic tank, Martin & "
+        "Moyce and Lobovsky dam breaks, water/oil/honey, Poiseuille and Couette flow, the "
+        "Taylor-Green vortex), with tolerances; writes CSV, JSON and PNG plots");
     validateCmd->add_option("--backend", validate.backend, "auto (GPU if present), cuda or cpu")
         ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
         ->capture_default_str();
@@ -328,7 +328,13 @@ int weirMain(int argc, char** argv) {
                      "Comma-separated cases: hydrostatic, dam-break (Martin & Moyce, over the "
                      "ladder), viscous (water, oil, honey at the coarsest rung), channels "
                      "(start-up Poiseuille and Couette flow, Morris et al. 1997), lobovsky "
-                     "(Lobovsky et al. 2014: front and impact pressures)")
+                     "(Lobovsky et al. 2014: front and impact pressures), taylor-green (the "
+                     "2-D vortex at Re 100)")
+        ->capture_default_str();
+    validateCmd
+        ->add_option("--taylor-green-resolution", validate.taylorGreenResolution,
+                     "Particles across the Taylor-Green vortex's periodic box")
+        ->transform(countOption(8, 400))
         ->capture_default_str();
     validateCmd
         ->add_option("--lobovsky-resolution", validate.lobovskyResolution,

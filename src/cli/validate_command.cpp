@@ -21,6 +21,7 @@ int validateCommand(const ValidateOptions& options) {
         o.damEndT = options.damEndT;
         o.channelResolution = options.channelResolution;
         o.lobovskyResolution = options.lobovskyResolution;
+        o.taylorGreenResolution = options.taylorGreenResolution;
         o.hydrostatic = o.damBreak = o.viscous = false;
         std::stringstream cases(options.cases);
         for (std::string c; std::getline(cases, c, ',');) {
@@ -34,9 +35,11 @@ int validateCommand(const ValidateOptions& options) {
                 o.channels = true;
             } else if (c == "lobovsky") {
                 o.lobovsky = true;
+            } else if (c == "taylor-green") {
+                o.taylorGreen = true;
             } else {
                 std::cerr << "weir validate: --cases: unknown case \"" << c
-                          << "\"; allowed are hydrostatic, dam-break, viscous, channels, lobovsky\n";
+                          << "\"; allowed are hydrostatic, dam-break, viscous, channels, lobovsky, taylor-green\n";
                 return kExitUsage;
             }
         }

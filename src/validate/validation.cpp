@@ -544,6 +544,80 @@ void runLobovsky(const ValidationOptions& o, ValidationReport& r) {
     r.lobovsky.push_back(std::move(run));
 }
 
+// The 2-D Taylor-Green vortex at Re = U L / nu = 100 in a periodic box (L = 1 m, U = 1 m/s,
+// water's density, nu = 0.01 m^2/s, a slab 4 d deep, periodic on every axis, no gravity, speed
+// of sound 10 U): u = -U cos(2 pi x / L) sin(2 pi y / L), v = U sin(2 pi x / L) cos(2 pi y / L),
+// with the analytic pressure's density at t = 0. Its kinetic energy decays as exp(2 b t),
+// b = -8 pi^2 nu / L^2; the rate is fitted (least squares of ln E) over t = 0.25 to 2 L / U.
+void runTaylorGreen(const ValidationOptions& o, ValidationReport& r) {
+    const double L = 1, U = 1, nu = 0.01, rho0 = 1000, c = 10 * U;
+    const int n = o.taylorGreenResolution;
+    const double d = L / n, depth = 4 * d;
+    const std::string json = R"({"name": "validate_taylor_green",
+        "container": {"min": [0, 0, 0], "max": )" + box(L, L, depth) +
+                             R"(, "periodic": [true, true, true]},
+        "blocks": [{"min": [0, 0, 0], "max": )" + box(L, L, depth) + R"(}],
+        "fluid": {"restDensity": 1000, "viscosity": )" + num(rho0 * nu) + R"(, "stiffness": )" +
+                             num(c * c) +
+                             (o.model.empty() ? "" : R"(, "model": ")" + o.model + R"(")") + R"(},
+        "particles": {"spacing": )" + num(d) + R"(},
+        "gravity": [0, 0, 0],
+        "limits": {"maxSpeed": )" + num(20 * U) + R"(},
+        "time": {"duration": 2, "frameRate": 8}})";
+    Scene scene = parseScene(json, "<validate taylor-green>");
+    SetupReport setupReport;
+    SimulationSetup setup = buildSetup(scene, {}, &setupReport);
+    WEIR_REQUIRE(!setup.seeder, "weir validate: the Taylor-Green particles were not on the host");
+    HostParticles& init = setup.particles;
+    for (std::size_t i = 0; i < init.size(); ++i) {
+        const double kx = 2 * kPiD * init.x[i] / L, ky = 2 * kPiD * init.y[i] / L;
+        init.vx[i] = Real(-U * std::cos(kx) * std::sin(ky));
+        init.vy[i] = Real(U * std::sin(kx) * std::cos(ky));
+        const double p = -rho0 * U * U / 4 * (std::cos(2 * kx) + std::cos(2 * ky));
+        init.rho[i] = Real(rho0 + p / (c * c));
+    }
+    auto sim = makeSimulation(o.backend, NeighbourMode::Auto, std::move(setup));
+    r.tgvResolution = n;
+    say(o, "Taylor-Green vortex, Re 100, " + std::to_string(n) + " across, " +
+               std::to_string(sim->particleCount()) + " particles");
+    HostParticles p;
+    double st = 0, se = 0, stt = 0, ste = 0;
+    int used = 0;
+    for (int k = 0; k <= 16; ++k) {
+        const double t = 0.125 * k;
+        if (k > 0) {
+            sim->advanceTo(t);
+            if (sim->fault().code != 0) {
+                throw SimulationError("Taylor-Green vortex: " +
+                                      describeFault(sim->fault(), sim->params()));
+            }
+        }
+        sim->download(p);
+        double energy = 0;
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            energy += 0.5 * (double(p.vx[i]) * p.vx[i] + double(p.vy[i]) * p.vy[i] +
+                             double(p.vz[i]) * p.vz[i]);
+        }
+        energy /= double(std::max<std::size_t>(1, p.size()));
+        r.tgvT.push_back(t);
+        r.tgvEnergy.push_back(energy);
+        if (t >= 0.25 && energy > 0) {
+            st += t;
+            se += std::log(energy);
+            stt += t * t;
+            ste += t * std::log(energy);
+            ++used;
+        }
+    }
+    const double slope = used > 1 ? (used * ste - st * se) / (used * stt - st * st) : 0;
+    r.tgvDecayRate = slope / 2;
+    r.tgvDecayReference = -8 * kPiD * kPiD * nu / (L * L);
+    r.checks.push_back({"Taylor-Green vortex, Re 100: |decay rate / -8 pi^2 / Re - 1| (" +
+                            std::to_string(n) + " across)",
+                        std::abs(r.tgvDecayRate / r.tgvDecayReference - 1),
+                        kTaylorGreenDecayTolerance, ""});
+}
+
 std::string modelName(const std::string& model) {
     return model.empty() ? "the scenes' default" : model;
 }
@@ -568,6 +642,9 @@ ValidationReport runValidation(const ValidationOptions& options) {
     }
     if (options.lobovsky) {
         runLobovsky(options, report);
+    }
+    if (options.taylorGreen) {
+        runTaylorGreen(options, report);
     }
     return report;
 }
@@ -653,6 +730,14 @@ bool writeValidation(const ValidationReport& r, const std::string& dir, bool plo
                 g << run.resolution << "," << run.pressureTau[k] << "," << run.pressure[k][0]
                   << "," << run.pressure[k][1] << "," << run.pressure[k][2] << "\n";
             }
+        }
+    }
+    {
+        std::ofstream f(fs::path(dir) / "taylor_green.csv");
+        f << "t,energy,energy_analytic\n";
+        for (std::size_t k = 0; k < r.tgvT.size(); ++k) {
+            f << r.tgvT[k] << "," << r.tgvEnergy[k] << ","
+              << r.tgvEnergy[0] * std::exp(2 * r.tgvDecayReference * r.tgvT[k]) << "\n";
         }
     }
     {
