@@ -39,7 +39,8 @@ int validateCommand(const ValidateOptions& options) {
                 o.taylorGreen = true;
             } else {
                 std::cerr << "weir validate: --cases: unknown case \"" << c
-                          << "\"; allowed are hydrostatic, dam-break, viscous, channels, lobovsky, taylor-green\n";
+                          << "\"; allowed are hydrostatic, dam-break, viscous, channels, lobovsky, "
+                             "taylor-green\n";
                 return kExitUsage;
             }
         }

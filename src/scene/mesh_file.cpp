@@ -48,6 +48,22 @@ std::vector<std::string_view> wordsOf(std::string_view line) {
     return words;
 }
 
+// Calls visit(words, "line N") for each line of text that holds a word (lines end at '\n').
+template <class Visit>
+void forEachLineOfWords(std::string_view text, Visit&& visit) {
+    std::size_t lineNumber = 0;
+    for (std::size_t start = 0; start < text.size();) {
+        const std::size_t end = std::min(text.find('\n', start), text.size());
+        const std::string_view line = text.substr(start, end - start);
+        start = end + 1;
+        ++lineNumber;
+        const std::vector<std::string_view> words = wordsOf(line);
+        if (!words.empty()) {
+            visit(words, "line " + std::to_string(lineNumber));
+        }
+    }
+}
+
 // A short, printable quote of a token for messages.
 std::string quoted(std::string_view text) {
     std::string out = "'";
@@ -78,8 +94,8 @@ double coordinate(std::string_view text, const std::string& name, const std::str
 Vec3d vertexOf(const std::vector<std::string_view>& words, std::size_t first,
                const std::string& name, const std::string& where) {
     if (words.size() < first + 3) {
-        fail(name, where, "a vertex needs three numbers, it has " +
-                              std::to_string(words.size() - first));
+        fail(name, where,
+             "a vertex needs three numbers, it has " + std::to_string(words.size() - first));
     }
     return {coordinate(words[first], name, where, "x"),
             coordinate(words[first + 1], name, where, "y"),
@@ -89,10 +105,10 @@ Vec3d vertexOf(const std::vector<std::string_view>& words, std::size_t first,
 // A face corner "7", "7/1", "7//3" or "-1": the 0-based vertex it names, of `count` so far.
 int cornerIndex(std::string_view item, int count, const std::string& name,
                 const std::string& where) {
-    const std::string allowed =
-        count == 0 ? "no vertex is defined above it"
-                   : "allowed: 1.." + std::to_string(count) + " or -" + std::to_string(count) +
-                         "..-1, the vertices above it";
+    const std::string allowed = count == 0
+                                    ? "no vertex is defined above it"
+                                    : "allowed: 1.." + std::to_string(count) + " or -" +
+                                          std::to_string(count) + "..-1, the vertices above it";
     std::string_view parts[3];
     int partCount = 0;
     for (std::size_t start = 0;;) {
@@ -112,12 +128,13 @@ int cornerIndex(std::string_view item, int count, const std::string& name,
         const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
         const bool integer = result.ec == std::errc() && result.ptr == text.data() + text.size();
         if (k == 0 && !integer) {
-            fail(name, where, "face index " + quoted(item) + " is not an integer (" + allowed +
-                                  ")");
+            fail(name, where,
+                 "face index " + quoted(item) + " is not an integer (" + allowed + ")");
         }
         if (k > 0 && !text.empty() && !integer) {
-            fail(name, where, "face corner " + quoted(item) + " has a texture or normal index " +
-                                  quoted(text) + " that is not an integer");
+            fail(name, where,
+                 "face corner " + quoted(item) + " has a texture or normal index " + quoted(text) +
+                     " that is not an integer");
         }
     }
     long long index = 0;
@@ -177,34 +194,26 @@ MeshData parseBinaryStl(std::string_view bytes, std::uint32_t count, const std::
 MeshData parseAsciiStl(std::string_view text, const std::string& name) {
     MeshData mesh;
     std::vector<Vec3d> corners;
-    std::size_t lineNumber = 0;
-    for (std::size_t start = 0; start < text.size();) {
-        const std::size_t end = std::min(text.find('\n', start), text.size());
-        const std::string_view line = text.substr(start, end - start);
-        start = end + 1;
-        ++lineNumber;
-        const auto words = wordsOf(line);
-        if (words.empty()) {
-            continue;
-        }
-        const std::string where = "line " + std::to_string(lineNumber);
-        if (words[0] == "vertex") {
-            if (corners.size() == 3) {
-                fail(name, where, "a facet with more than three vertices (only triangles)");
+    forEachLineOfWords(
+        text, [&](const std::vector<std::string_view>& words, const std::string& where) {
+            if (words[0] == "vertex") {
+                if (corners.size() == 3) {
+                    fail(name, where, "a facet with more than three vertices (only triangles)");
+                }
+                corners.push_back(vertexOf(words, 1, name, where));
+            } else if (words[0] == "endfacet") {
+                if (corners.size() != 3) {
+                    fail(name, where,
+                         "an ASCII STL facet has " + std::to_string(corners.size()) +
+                             " vertices, not 3");
+                }
+                if (mesh.vertices.size() + 3 > kMaxVertices) {
+                    fail(name, where, "more than " + std::to_string(kMaxVertices) + " vertices");
+                }
+                addTriangle(mesh, corners[0], corners[1], corners[2]);
+                corners.clear();
             }
-            corners.push_back(vertexOf(words, 1, name, where));
-        } else if (words[0] == "endfacet") {
-            if (corners.size() != 3) {
-                fail(name, where, "an ASCII STL facet has " + std::to_string(corners.size()) +
-                                      " vertices, not 3");
-            }
-            if (mesh.vertices.size() + 3 > kMaxVertices) {
-                fail(name, where, "more than " + std::to_string(kMaxVertices) + " vertices");
-            }
-            addTriangle(mesh, corners[0], corners[1], corners[2]);
-            corners.clear();
-        }
-    }
+        });
     return mesh;
 }
 
@@ -212,18 +221,9 @@ MeshData parseAsciiStl(std::string_view text, const std::string& name) {
 
 MeshData parseObjMesh(std::string_view text, const std::string& name) {
     MeshData mesh;
-    std::size_t lineNumber = 0;
     std::vector<int> face;
-    for (std::size_t start = 0; start < text.size();) {
-        const std::size_t end = std::min(text.find('\n', start), text.size());
-        const std::string_view line = text.substr(start, end - start);
-        start = end + 1;
-        ++lineNumber;
-        const auto words = wordsOf(line);
-        if (words.empty()) {
-            continue;
-        }
-        const std::string where = "line " + std::to_string(lineNumber);
+    forEachLineOfWords(text, [&](const std::vector<std::string_view>& words,
+                                 const std::string& where) {
         if (words[0] == "v") {
             if (mesh.vertices.size() >= kMaxVertices) {
                 fail(name, where, "more than " + std::to_string(kMaxVertices) + " vertices");
@@ -236,14 +236,14 @@ MeshData parseObjMesh(std::string_view text, const std::string& name) {
                 face.push_back(cornerIndex(words[k], count, name, where));
             }
             if (face.size() < 3) {
-                fail(name, where, "a face needs at least three vertices, it has " +
-                                      std::to_string(face.size()));
+                fail(name, where,
+                     "a face needs at least three vertices, it has " + std::to_string(face.size()));
             }
             for (std::size_t k = 1; k + 1 < face.size(); ++k) {
                 mesh.triangles.push_back({face[0], face[k], face[k + 1]});
             }
         }
-    }
+    });
     return mesh;
 }
 
@@ -256,22 +256,23 @@ MeshData parseStlMesh(std::string_view bytes, const std::string& name) {
         const std::uint64_t needed = 84 + std::uint64_t(count) * 50;
         if (bytes.size() == needed) {
             if (std::size_t(count) * 3 > kMaxVertices) {
-                fail(name, "", "a binary STL of " + std::to_string(count) +
-                                   " triangles (at most " + std::to_string(kMaxVertices / 3) +
-                                   ")");
+                fail(name, "",
+                     "a binary STL of " + std::to_string(count) + " triangles (at most " +
+                         std::to_string(kMaxVertices / 3) + ")");
             }
             return parseBinaryStl(bytes, count, name);
         }
         if (!startsWithSolid(bytes)) {
-            fail(name, "", "binary STL header says " + std::to_string(count) +
-                               " triangles, which need " + std::to_string(needed) +
-                               " bytes, but the file has " + std::to_string(bytes.size()) +
-                               " (truncated, or not an STL file)");
+            fail(name, "",
+                 "binary STL header says " + std::to_string(count) + " triangles, which need " +
+                     std::to_string(needed) + " bytes, but the file has " +
+                     std::to_string(bytes.size()) + " (truncated, or not an STL file)");
         }
     } else if (!startsWithSolid(bytes)) {
-        fail(name, "", "a file of " + std::to_string(bytes.size()) +
-                           " bytes is neither ASCII STL (starting with 'solid') nor binary STL "
-                           "(84 bytes or more)");
+        fail(name, "",
+             "a file of " + std::to_string(bytes.size()) +
+                 " bytes is neither ASCII STL (starting with 'solid') nor binary STL "
+                 "(84 bytes or more)");
     }
     return parseAsciiStl(bytes, name);
 }

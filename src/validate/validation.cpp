@@ -64,12 +64,17 @@ void say(const ValidationOptions& o, const std::string& line) {
 void runTank(const ValidationOptions& o, ValidationReport& r) {
     const double H = 0.3, d = H / o.tankResolution, W = 6 * d;
     const std::string json = R"({"name": "validate_hydrostatic",
-        "container": {"min": [0, 0, 0], "max": )" + box(H, 1.5 * H, W) + R"(},
-        "blocks": [{"min": [0, 0, 0], "max": )" + box(H, H, W) + R"(}],
-        "fluid": )" + fluidJson("water", o.model) + R"(,
-        "particles": {"spacing": )" + num(d) + R"(},
+        "container": {"min": [0, 0, 0], "max": )" +
+                             box(H, 1.5 * H, W) + R"(},
+        "blocks": [{"min": [0, 0, 0], "max": )" +
+                             box(H, H, W) + R"(}],
+        "fluid": )" + fluidJson("water", o.model) +
+                             R"(,
+        "particles": {"spacing": )" +
+                             num(d) + R"(},
         "walls": {"model": "particles"},
-        "time": {"duration": )" + num(o.settleTime) + R"(, "frameRate": 10}})";
+        "time": {"duration": )" +
+                             num(o.settleTime) + R"(, "frameRate": 10}})";
     Scene scene = parseScene(json, "<validate hydrostatic>");
     SetupReport setupReport;
     SimulationSetup setup = buildSetup(scene, {}, &setupReport);
@@ -169,18 +174,18 @@ void runTank(const ValidationOptions& o, ValidationReport& r) {
     r.pressureGradient = slope;
     r.surfaceDrift = std::abs(surface - H) / d;
     const double freeFall = std::sqrt(2 * kG * H);
-    r.checks.push_back({"hydrostatic: interior layer pressure, max |mean - rho0 g depth| / rho0 g H",
-                        used > 0 ? worstLayer / r.rho0gH : 1e30, kLayerPressureTolerance, ""});
+    r.checks.push_back(
+        {"hydrostatic: interior layer pressure, max |mean - rho0 g depth| / rho0 g H",
+         used > 0 ? worstLayer / r.rho0gH : 1e30, kLayerPressureTolerance, ""});
     r.checks.push_back({"hydrostatic: pressure gradient |dp/dy / (-rho0 g) - 1|",
                         used > 1 ? std::abs(slope / (-1000.0 * kG) - 1) : 1e30,
                         kPressureGradientTolerance, ""});
-    r.checks.push_back({"hydrostatic: floor layer pressure |mean / rho0 g depth - 1|",
-                        r.wallLayerReference > 0
-                            ? std::abs(r.wallLayerPressure / r.wallLayerReference - 1)
-                            : 1e30,
-                        kWallLayerPressureTolerance, ""});
-    r.checks.push_back({"hydrostatic: surface drift / spacing", r.surfaceDrift,
-                        kSurfaceDriftTolerance, ""});
+    r.checks.push_back(
+        {"hydrostatic: floor layer pressure |mean / rho0 g depth - 1|",
+         r.wallLayerReference > 0 ? std::abs(r.wallLayerPressure / r.wallLayerReference - 1) : 1e30,
+         kWallLayerPressureTolerance, ""});
+    r.checks.push_back(
+        {"hydrostatic: surface drift / spacing", r.surfaceDrift, kSurfaceDriftTolerance, ""});
     r.checks.push_back({"hydrostatic: max density deviation at rest (rho - rho0) / rho0", worst.max,
                         kDensityDeviationTolerance, ""});
     r.checks.push_back({"hydrostatic: mean density deviation at rest", worst.mean,
@@ -202,13 +207,18 @@ FrontRun runDamBreak(const ValidationOptions& o, int resolution, const std::stri
     const double length = a * (1.5 + 1.4 * o.damEndT);  // past the front at the end
     const double frameRate = timeScale / 0.125;         // a frame every 0.125 in T
     const std::string json = R"({"name": "validate_martin_moyce",
-        "container": {"min": [0, 0, 0], "max": )" + box(length, 1.5 * height, depth) +
+        "container": {"min": [0, 0, 0], "max": )" +
+                             box(length, 1.5 * height, depth) +
                              R"(, "periodic": [false, false, true]},
-        "blocks": [{"min": [0, 0, 0], "max": )" + box(a, height, depth) + R"(}],
-        "fluid": )" + fluidJson(preset, o.model) + R"(,
-        "particles": {"spacing": )" + num(d) + R"(},
+        "blocks": [{"min": [0, 0, 0], "max": )" +
+                             box(a, height, depth) + R"(}],
+        "fluid": )" + fluidJson(preset, o.model) +
+                             R"(,
+        "particles": {"spacing": )" +
+                             num(d) + R"(},
         "walls": {"model": "particles"},
-        "time": {"duration": )" + num(endTime) + R"(, "frameRate": )" + num(frameRate) + "}}";
+        "time": {"duration": )" +
+                             num(endTime) + R"(, "frameRate": )" + num(frameRate) + "}}";
     Scene scene = parseScene(json, "<validate dam break>");
     SetupReport setupReport;
     SimulationSetup setup = buildSetup(scene, {}, &setupReport);
@@ -306,19 +316,21 @@ void runLadder(const ValidationOptions& o, ValidationReport& r) {
 // Water, olive oil and honey from the same column: the fluid's own viscosity has to show. The
 // front's travel Z - 1 at the end, honey against water.
 void runViscous(const ValidationOptions& o, ValidationReport& r) {
-    const int resolution = *std::min_element(o.columnResolutions.begin(),
-                                             o.columnResolutions.end());
+    const int resolution =
+        *std::min_element(o.columnResolutions.begin(), o.columnResolutions.end());
     for (const char* preset : {"water", "oil", "honey"}) {
         r.viscous.push_back(runDamBreak(o, resolution, preset));
     }
     const double water = r.viscous[0].Z.back() - 1, oil = r.viscous[1].Z.back() - 1,
                  honey = r.viscous[2].Z.back() - 1;
-    r.checks.push_back({"viscous dam break: honey's front travel / water's at the end", honey / water,
-                        kViscousFrontRatio, ""});
-    r.checks.push_back({"viscous dam break: oil's front travel / water's - 1 (oil no faster than water)",
-                        oil / water - 1, 0.02, ""});
-    r.checks.push_back({"viscous dam break: honey's front travel / oil's - 1 (honey slower than oil)",
-                        honey / oil - 1, 0.0, ""});
+    r.checks.push_back({"viscous dam break: honey's front travel / water's at the end",
+                        honey / water, kViscousFrontRatio, ""});
+    r.checks.push_back(
+        {"viscous dam break: oil's front travel / water's - 1 (oil no faster than water)",
+         oil / water - 1, 0.02, ""});
+    r.checks.push_back(
+        {"viscous dam break: honey's front travel / oil's - 1 (honey slower than oil)",
+         honey / oil - 1, 0.0, ""});
 }
 
 // Start-up channel flow, Morris et al. 1997's set-up: L = 1 mm, water (nu = 1e-6), walls of
@@ -332,18 +344,23 @@ ChannelRun runChannel(const ValidationOptions& o, const std::string& flow) {
     const bool poiseuille = flow == "poiseuille";
     const std::string json =
         R"({"name": "validate_)" + flow + R"(",
-        "container": {"min": [0, 0, 0], "max": )" + box(lx, L, lz) +
+        "container": {"min": [0, 0, 0], "max": )" +
+        box(lx, L, lz) +
         R"(, "periodic": [true, false, true]},
-        "blocks": [{"min": [0, 0, 0], "max": )" + box(lx, L, lz) + R"(}],
+        "blocks": [{"min": [0, 0, 0], "max": )" +
+        box(lx, L, lz) + R"(}],
         "fluid": {"preset": "water", "restDensity": 1000, "viscosity": 0.001, "stiffness": )" +
         num(c * c) + (o.model.empty() ? "" : R"(, "model": ")" + o.model + R"(")") + R"(},
-        "particles": {"spacing": )" + num(d) + R"(},
-        "gravity": )" + (poiseuille ? box(F, 0, 0) : box(0, 0, 0)) + R"(,
+        "particles": {"spacing": )" +
+        num(d) + R"(},
+        "gravity": )" +
+        (poiseuille ? box(F, 0, 0) : box(0, 0, 0)) + R"(,
         "walls": {"model": "particles", "slip": "no-slip")" +
         (poiseuille ? std::string()
                     : R"(, "moving": [{"face": "+y", "velocity": )" + box(scale, 0, 0) + "}]") +
         R"(},
-        "limits": {"maxSpeed": )" + num(100 * scale) + R"(},
+        "limits": {"maxSpeed": )" +
+        num(100 * scale) + R"(},
         "time": {"duration": 0.5, "frameRate": 40}})";
     Scene scene = parseScene(json, "<validate " + flow + ">");
     SetupReport setupReport;
@@ -377,10 +394,11 @@ ChannelRun runChannel(const ValidationOptions& o, const std::string& flow) {
         double error = 0;
         for (int layer = 0; layer < n; ++layer) {
             const double eta = run.eta[std::size_t(layer)];
-            u.push_back(count[std::size_t(layer)] > 0 ? sum[std::size_t(layer)] /
-                                                           count[std::size_t(layer)] / scale
-                                                     : 0);
-            ref.push_back(poiseuille ? poiseuilleVelocity(eta, theta) : couetteVelocity(eta, theta));
+            u.push_back(count[std::size_t(layer)] > 0
+                            ? sum[std::size_t(layer)] / count[std::size_t(layer)] / scale
+                            : 0);
+            ref.push_back(poiseuille ? poiseuilleVelocity(eta, theta)
+                                     : couetteVelocity(eta, theta));
             error = std::max(error, std::abs(u.back() - ref.back()));
         }
         run.theta.push_back(theta);
@@ -405,9 +423,9 @@ void runChannels(const ValidationOptions& o, ValidationReport& r) {
         r.checks.push_back({std::string(flow) + ": start-up profiles, max |u - u_series| / " +
                                 scale + " at theta 0.0225-0.225" + at,
                             startup, kChannelStartupTolerance, ""});
-        r.checks.push_back({std::string(flow) + ": steady profile (theta 0.5), max |u - u_series| / " +
-                                scale + at,
-                            run.error.back(), kChannelSteadyTolerance, ""});
+        r.checks.push_back(
+            {std::string(flow) + ": steady profile (theta 0.5), max |u - u_series| / " + scale + at,
+             run.error.back(), kChannelSteadyTolerance, ""});
     }
 }
 
@@ -429,8 +447,8 @@ struct PressureBand {
     double low, median, high;  // peak p / (rho g H): 2.5%, median, 97.5% curves
 };
 constexpr PressureBand kLobovskyPeaks[] = {{1.7710, 1.8708, 2.0316},   // sensor 2, tau 2.60
-                                          {1.3338, 1.4532, 1.6494},   // sensor 3, tau 2.76
-                                          {0.7388, 0.8819, 1.1484}};  // sensor 4, tau 6.0
+                                           {1.3338, 1.4532, 1.6494},   // sensor 3, tau 2.76
+                                           {0.7388, 0.8819, 1.1484}};  // sensor 4, tau 6.0
 constexpr double kLobovskySensorHeight[] = {0.015, 0.030, 0.080};
 
 void runLobovsky(const ValidationOptions& o, ValidationReport& r) {
@@ -438,13 +456,18 @@ void runLobovsky(const ValidationOptions& o, ValidationReport& r) {
     const double tauScale = std::sqrt(kG / H), travel = (length - L) / H;
     const double endTau = 6.5;
     const std::string json = R"({"name": "validate_lobovsky",
-        "container": {"min": [0, 0, 0], "max": )" + box(length, 0.6, depth) +
+        "container": {"min": [0, 0, 0], "max": )" +
+                             box(length, 0.6, depth) +
                              R"(, "periodic": [false, false, true]},
-        "blocks": [{"min": [0, 0, 0], "max": )" + box(L, H, depth) + R"(}],
-        "fluid": )" + fluidJson("water", o.model) + R"(,
-        "particles": {"spacing": )" + num(d) + R"(},
+        "blocks": [{"min": [0, 0, 0], "max": )" +
+                             box(L, H, depth) + R"(}],
+        "fluid": )" + fluidJson("water", o.model) +
+                             R"(,
+        "particles": {"spacing": )" +
+                             num(d) + R"(},
         "walls": {"model": "particles"},
-        "time": {"duration": )" + num(endTau / tauScale) + R"(, "frameRate": 100}})";
+        "time": {"duration": )" +
+                             num(endTau / tauScale) + R"(, "frameRate": 100}})";
     Scene scene = parseScene(json, "<validate lobovsky>");
     SetupReport setupReport;
     SimulationSetup setup = buildSetup(scene, {}, &setupReport);
@@ -501,8 +524,8 @@ void runLobovsky(const ValidationOptions& o, ValidationReport& r) {
     for (const LobovskyFrontPoint& ref : kLobovskyFront) {
         for (std::size_t k = 1; k < run.frontTau.size(); ++k) {
             if (run.frontTau[k] >= ref.tau) {
-                const double w = (ref.tau - run.frontTau[k - 1]) /
-                                 (run.frontTau[k] - run.frontTau[k - 1]);
+                const double w =
+                    (ref.tau - run.frontTau[k - 1]) / (run.frontTau[k] - run.frontTau[k - 1]);
                 const double x = run.frontX[k - 1] + w * (run.frontX[k] - run.frontX[k - 1]);
                 squares += (x - ref.x) * (x - ref.x);
                 ++used;
@@ -514,9 +537,10 @@ void runLobovsky(const ValidationOptions& o, ValidationReport& r) {
     // Peaks of the 3-sample running mean (the experiment's curves are filtered too).
     for (int s = 0; s < 3; ++s) {
         for (std::size_t k = 1; k + 1 < run.pressure.size(); ++k) {
-            const double mean = (run.pressure[k - 1][std::size_t(s)] +
-                                 run.pressure[k][std::size_t(s)] +
-                                 run.pressure[k + 1][std::size_t(s)]) / 3;
+            const double mean =
+                (run.pressure[k - 1][std::size_t(s)] + run.pressure[k][std::size_t(s)] +
+                 run.pressure[k + 1][std::size_t(s)]) /
+                3;
             // Sensor 4's peak is the returning wave's (tau ~ 6); the others, the first impact's.
             const bool inWindow = s == 2 ? run.pressureTau[k] > 4.5 : run.pressureTau[k] < 4.0;
             if (inWindow && mean > run.peak[std::size_t(s)]) {
@@ -554,15 +578,19 @@ void runTaylorGreen(const ValidationOptions& o, ValidationReport& r) {
     const int n = o.taylorGreenResolution;
     const double d = L / n, depth = 4 * d;
     const std::string json = R"({"name": "validate_taylor_green",
-        "container": {"min": [0, 0, 0], "max": )" + box(L, L, depth) +
+        "container": {"min": [0, 0, 0], "max": )" +
+                             box(L, L, depth) +
                              R"(, "periodic": [true, true, true]},
-        "blocks": [{"min": [0, 0, 0], "max": )" + box(L, L, depth) + R"(}],
-        "fluid": {"restDensity": 1000, "viscosity": )" + num(rho0 * nu) + R"(, "stiffness": )" +
-                             num(c * c) +
+        "blocks": [{"min": [0, 0, 0], "max": )" +
+                             box(L, L, depth) + R"(}],
+        "fluid": {"restDensity": 1000, "viscosity": )" +
+                             num(rho0 * nu) + R"(, "stiffness": )" + num(c * c) +
                              (o.model.empty() ? "" : R"(, "model": ")" + o.model + R"(")") + R"(},
-        "particles": {"spacing": )" + num(d) + R"(},
+        "particles": {"spacing": )" +
+                             num(d) + R"(},
         "gravity": [0, 0, 0],
-        "limits": {"maxSpeed": )" + num(20 * U) + R"(},
+        "limits": {"maxSpeed": )" +
+                             num(20 * U) + R"(},
         "time": {"duration": 2, "frameRate": 8}})";
     Scene scene = parseScene(json, "<validate taylor-green>");
     SetupReport setupReport;
@@ -625,7 +653,8 @@ std::string modelName(const std::string& model) {
 }  // namespace
 
 ValidationReport runValidation(const ValidationOptions& options) {
-    WEIR_REQUIRE(!options.columnResolutions.empty(), "weir validate: no dam-break resolution given");
+    WEIR_REQUIRE(!options.columnResolutions.empty(),
+                 "weir validate: no dam-break resolution given");
     ValidationReport report;
     report.model = modelName(options.model);
     if (options.hydrostatic) {
@@ -727,8 +756,8 @@ bool writeValidation(const ValidationReport& r, const std::string& dir, bool plo
         g << "resolution,tau,sensor2,sensor3,sensor4\n";
         for (const LobovskyRun& run : r.lobovsky) {
             for (std::size_t k = 0; k < run.pressureTau.size(); ++k) {
-                g << run.resolution << "," << run.pressureTau[k] << "," << run.pressure[k][0]
-                  << "," << run.pressure[k][1] << "," << run.pressure[k][2] << "\n";
+                g << run.resolution << "," << run.pressureTau[k] << "," << run.pressure[k][0] << ","
+                  << run.pressure[k][1] << "," << run.pressure[k][2] << "\n";
             }
         }
     }

@@ -14,22 +14,22 @@ namespace weir {
 
 struct ValidationOptions {
     Backend backend = Backend::Cpu;
-    std::string model;          // fluid.model of every case: "" (the scenes' default), "paper",
-                                // "delta-sph"
-    int tankResolution = 24;    // particles over the tank's water depth
+    std::string model;        // fluid.model of every case: "" (the scenes' default), "paper",
+                              // "delta-sph"
+    int tankResolution = 24;  // particles over the tank's water depth
     std::vector<int> columnResolutions{12};  // particles across the column, coarse to fine: the
                                              // ladder; the finest is held to the tolerances
-    double settleTime = 1.0;    // s of tank simulation; the last 40% are averaged
-    double damEndT = 5.0;       // dam break run to T = t sqrt(2 g / a)
-    bool hydrostatic = true;    // the cases to run
+    double settleTime = 1.0;                 // s of tank simulation; the last 40% are averaged
+    double damEndT = 5.0;                    // dam break run to T = t sqrt(2 g / a)
+    bool hydrostatic = true;                 // the cases to run
     bool damBreak = true;
-    bool viscous = false;       // water, oil and honey dam breaks at the coarsest ladder rung
-    bool channels = false;      // start-up Poiseuille and Couette flow (Morris et al. 1997)
-    bool lobovsky = false;      // Lobovsky et al. 2014, H = 300 mm: front and wall pressures
-    int lobovskyResolution = 20;  // particles over the column's height H
-    bool taylorGreen = false;   // the 2-D Taylor-Green vortex at Re = 100
+    bool viscous = false;            // water, oil and honey dam breaks at the coarsest ladder rung
+    bool channels = false;           // start-up Poiseuille and Couette flow (Morris et al. 1997)
+    bool lobovsky = false;           // Lobovsky et al. 2014, H = 300 mm: front and wall pressures
+    int lobovskyResolution = 20;     // particles over the column's height H
+    bool taylorGreen = false;        // the 2-D Taylor-Green vortex at Re = 100
     int taylorGreenResolution = 32;  // particles across the periodic box
-    int channelResolution = 20;  // particles across the channel
+    int channelResolution = 20;      // particles across the channel
     bool quiet = false;
 };
 
@@ -57,11 +57,11 @@ struct ChannelRun {
 struct LobovskyRun {
     int resolution = 0, particles = 0;
     double seconds = 0;
-    std::vector<double> frontTau, frontX;        // (front - gate) / H
-    std::vector<double> pressureTau;             // sampling times of the sensors
+    std::vector<double> frontTau, frontX;         // (front - gate) / H
+    std::vector<double> pressureTau;              // sampling times of the sensors
     std::vector<std::array<double, 3>> pressure;  // sensors 2, 3, 4
-    double frontRms = 0;                         // RMS of x_sim - x_ref, / the travel to the wall
-    std::array<double, 3> peak{}, peakTau{};     // of the 3-sample running mean
+    double frontRms = 0;                          // RMS of x_sim - x_ref, / the travel to the wall
+    std::array<double, 3> peak{}, peakTau{};      // of the 3-sample running mean
 };
 
 // One dam-break run: the front over time and its errors against Martin & Moyce.
@@ -113,16 +113,18 @@ constexpr double kWallLayerPressureTolerance = 0.10;  // floor layer, relative t
 constexpr double kSurfaceDriftTolerance = 1.0;        // surface height change, in spacings
 constexpr double kDensityDeviationTolerance = 0.03;   // max (rho - rho0) / rho0
 constexpr double kMeanDensityDeviationTolerance = 0.01;
-constexpr double kStraySpeedTolerance = 0.05;    // RMS |v| / sqrt(2 g H) at rest
+constexpr double kStraySpeedTolerance = 0.05;        // RMS |v| / sqrt(2 g H) at rest
 constexpr double kFrontRmsRelativeTolerance = 0.10;  // RMS of (Z_sim - Z_ref) / Z_ref
 constexpr double kFrontMaxRelativeTolerance = 0.15;  // max of |Z_sim - Z_ref| / Z_ref
-constexpr double kLadderGrowthTolerance = 0.02;  // a finer rung's RMS error may exceed the
-                                                 // coarser's by at most this (noise)
-constexpr double kChannelSteadyTolerance = 0.02;   // max |u - u_ref| / scale at steady state
-constexpr double kChannelStartupTolerance = 0.05;  // during start-up
+constexpr double kLadderGrowthTolerance = 0.02;      // a finer rung's RMS error may exceed the
+                                                     // coarser's by at most this (noise)
+constexpr double kChannelSteadyTolerance = 0.02;     // max |u - u_ref| / scale at steady state
+constexpr double kChannelStartupTolerance = 0.05;    // during start-up
 constexpr double kViscousFrontRatio = 0.8;
 constexpr double kLobovskyFrontTolerance = 0.05;
-constexpr double kTaylorGreenDecayTolerance = 0.05;  // |fitted rate / analytic - 1|  // RMS front error / the 3.37 H to the wall  // honey's front travel / water's, at most
+constexpr double kTaylorGreenDecayTolerance =
+    0.05;  // |fitted rate / analytic - 1|  // RMS front error / the 3.37 H to the wall  // honey's
+           // front travel / water's, at most
 
 ValidationReport runValidation(const ValidationOptions& options);
 

@@ -8,10 +8,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
-#include <iostream>
 
 namespace weir {
 namespace {
@@ -119,7 +119,8 @@ TEST(Validate, ChannelSeriesMatchTheTabulatedMorrisSolutions) {
     const std::filesystem::path data =
         std::filesystem::path(WEIR_SOURCE_DIR).parent_path() / "shared" / "data";
     int compared = 0;
-    for (const char* name : {"poiseuille_startup_morris1997.csv", "couette_startup_morris1997.csv"}) {
+    for (const char* name :
+         {"poiseuille_startup_morris1997.csv", "couette_startup_morris1997.csv"}) {
         std::ifstream f(data / name);
         if (!f) {
             GTEST_SKIP() << "no " << (data / name) << " beside the checkout";
@@ -147,8 +148,8 @@ TEST(Validate, ChannelSeriesMatchTheTabulatedMorrisSolutions) {
             for (std::size_t k = 1; k < row.size(); ++k) {
                 const double u = poiseuille ? poiseuilleVelocity(eta, thetas[k - 1])
                                             : couetteVelocity(eta, thetas[k - 1]);
-                EXPECT_NEAR(u, std::stod(row[k]), 2e-4) << name << " eta " << eta << " theta "
-                                                        << thetas[k - 1];
+                EXPECT_NEAR(u, std::stod(row[k]), 2e-4)
+                    << name << " eta " << eta << " theta " << thetas[k - 1];
                 ++compared;
             }
         }
