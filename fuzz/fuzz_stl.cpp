@@ -9,8 +9,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     try {
-        weir::parseStlMesh(std::string_view(reinterpret_cast<const char*>(data), size),
-                           "fuzz.stl");
+        weir::parseStlMesh(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.stl");
     } catch (const std::runtime_error&) {
     }
     return 0;

@@ -15,11 +15,12 @@ CaughtError caughtError() {
     } catch (const std::invalid_argument& e) {
         return {e.what(), kExitUsage};
     } catch (const std::bad_alloc&) {
-        return {"out of memory: an allocation failed (std::bad_alloc), most likely the particles "
-                "or the frames of a run too large for this machine; try fewer particles "
-                "(--particles, particles.count), a larger particles.spacing, a smaller container, "
-                "or close other programs",
-                kExitError};
+        return {
+            "out of memory: an allocation failed (std::bad_alloc), most likely the particles "
+            "or the frames of a run too large for this machine; try fewer particles "
+            "(--particles, particles.count), a larger particles.spacing, a smaller container, "
+            "or close other programs",
+            kExitError};
     } catch (const std::exception& e) {
         return {e.what(), kExitError};
     } catch (...) {

@@ -225,7 +225,9 @@ TEST(Distributed, PeriodicAxesMatchTheSingleRankRun) {
                    {"min": [0, 0.06, 0], "max": [0.08, 0.1, 0.08], "velocity": [-0.3, 0, 0]}],
         "particles": {"spacing": 0.01}, "walls": {"model": "particles"}})";
     const Scene scene = parseScene(R"({"container": {"min": [0, 0, 0], "max": [0.16, 0.12, 0.08],
-        "periodic": [true, false, true]},)" + blocks, "<test periodic channel>");
+        "periodic": [true, false, true]},)" +
+                                       blocks,
+                                   "<test periodic channel>");
     for (NeighbourMode mode : {NeighbourMode::Dense, NeighbourMode::Grid}) {
         const SimulationSetup setup = buildSetup(scene, {}, nullptr);
         auto plain = makeSimulation(Backend::Cpu, mode, setup);
@@ -254,7 +256,8 @@ TEST(Distributed, PeriodicAxesMatchTheSingleRankRun) {
         }
     }
     const Scene allPeriodic = parseScene(R"({"container": {"min": [0, 0, 0],
-        "max": [0.16, 0.12, 0.08], "periodic": [true, true, true]},)" + blocks,
+        "max": [0.16, 0.12, 0.08], "periodic": [true, true, true]},)" +
+                                             blocks,
                                          "<test periodic box>");
     EXPECT_THROW(DistributedSimulation(world(), Backend::Cpu, NeighbourMode::Dense,
                                        buildSetup(allPeriodic, {}, nullptr)),

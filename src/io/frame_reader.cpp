@@ -200,8 +200,8 @@ class VtuFile {
             (attributes.count("NumberOfComponents") &&
              !parseNumber(attributes["NumberOfComponents"], array.components)) ||
             array.components == 0 || array.components > 16) {
-            fail("DataArray '" + name + "' has a bad offset or NumberOfComponents (allowed: " +
-                 "1..16)");
+            fail("DataArray '" + name +
+                 "' has a bad offset or NumberOfComponents (allowed: " + "1..16)");
         }
         arrays_[name] = array;
     }
@@ -399,8 +399,9 @@ void checkFramePositions(const HostParticles& particles, const std::string& path
                 refuse(i, axis, "positions must be finite numbers");
             }
             if (std::fabs(value) > kMaxFrameCoordinate) {
-                refuse(i, axis, "positions must lie within " + numberText(kMaxFrameCoordinate) +
-                                    " m of the origin");
+                refuse(i, axis,
+                       "positions must lie within " + numberText(kMaxFrameCoordinate) +
+                           " m of the origin");
             }
         }
     }
@@ -425,8 +426,9 @@ void checkFramePositions(const HostParticles& particles, const std::string& path
     for (std::size_t i = 0; i < n; ++i) {
         for (int axis = 0; axis < 3; ++axis) {
             if (std::fabs((*axes[axis])[i]) > limit) {
-                refuse(i, axis, "more than 1e6 times the frame's plausible extent " +
-                                    numberText(extent) + " m from the origin");
+                refuse(i, axis,
+                       "more than 1e6 times the frame's plausible extent " + numberText(extent) +
+                           " m from the origin");
             }
         }
     }

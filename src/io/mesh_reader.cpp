@@ -269,9 +269,9 @@ TriangleMesh readMeshPly(const std::string& path) {
                     if (normals) {
                         std::memcpy(&mesh.normals[i][k], record.data() + at[k + 3], 4);
                     }
-                    const int bad = !std::isfinite(mesh.positions[i][k])             ? k
+                    const int bad = !std::isfinite(mesh.positions[i][k])            ? k
                                     : normals && !std::isfinite(mesh.normals[i][k]) ? k + 3
-                                                                                     : -1;
+                                                                                    : -1;
                     if (bad >= 0) {
                         throw badFile(path, "vertex " + std::to_string(i) + " property '" +
                                                 names[bad] + "' is not a finite float");

@@ -21,11 +21,10 @@ WEIR_HD inline Real densityAt(Index i, const ParticleView& pv, const Neighbours&
     Real sum = 0;
     nb.forEachCandidate(
         i, [&](Index j) { sum += poly6(params.kernel, lengthSquared(xi - pv.position(j))); });
-    const Real walls =
-        params.walls == WallKind::Simple
-            ? wallDensity(params.wallWeight, params.boxMin, params.boxMax, params.restDensity, xi,
-                          params.periodicAxes)
-            : boundaryDensity(pv.boundary, params.kernel, xi);
+    const Real walls = params.walls == WallKind::Simple
+                           ? wallDensity(params.wallWeight, params.boxMin, params.boxMax,
+                                         params.restDensity, xi, params.periodicAxes)
+                           : boundaryDensity(pv.boundary, params.kernel, xi);
     return params.mass * sum + walls;
 }
 

@@ -49,7 +49,7 @@ struct SphParams {
     Real maxTimeStep = 1e30;   // s
     IntegratorKind integrator = IntegratorKind::SemiImplicitEuler;
 
-    Vec3 boxMin, boxMax;   // container walls
+    Vec3 boxMin, boxMax;  // container walls
     // Bit a set: axis a is periodic (container.periodic): no walls on its two faces, a particle
     // that leaves through one comes back through the other, and neighbours are found across
     // them (solver/periodic_ghosts.h). 0: walls all round, and no extra work.

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <numeric>
 #include <string>
-#include <utility>
 #include <unordered_map>
+#include <utility>
 
 #include "physics/kernels.h"
 
@@ -102,8 +102,8 @@ struct BoxLattice {
         double all = 1, interior = 1;
         for (int a = 0; a < 3; ++a) {
             all *= double(last[a] - first[a] + 1);
-            interior *= double(std::max(0L, std::min(last[a], n[a] - 1) -
-                                                std::max(first[a], 1L) + 1));
+            interior *=
+                double(std::max(0L, std::min(last[a], n[a] - 1) - std::max(first[a], 1L) + 1));
         }
         return all - interior;
     }
@@ -112,8 +112,8 @@ struct BoxLattice {
 // The surface of box [lo, hi] on a lattice of spacing close to d (each axis divided evenly), the
 // points inside `region` only; for the container (`container`) each point names its first face,
 // 0..5 as -x, +x, -y, +y, -z, +z.
-void sampleBoxSurface(const Vec3d& lo, const Vec3d& hi, double d, bool container,
-                      const Box& region, PointSet& out) {
+void sampleBoxSurface(const Vec3d& lo, const Vec3d& hi, double d, bool container, const Box& region,
+                      PointSet& out) {
     const BoxLattice lattice(lo, hi, d, region);
     if (lattice.empty()) {
         return;
@@ -154,8 +154,8 @@ struct SphereBand {
         const double yHi = (region.max.y - centre.y) / radius;
         bool meets = true;
         for (int a = 0; a < 3; ++a) {
-            meets = meets && centre[a] + radius >= region.min[a] &&
-                    centre[a] - radius <= region.max[a];
+            meets =
+                meets && centre[a] + radius >= region.min[a] && centre[a] - radius <= region.max[a];
         }
         if (meets) {
             first = std::max(0.0, std::floor((1.0 - yHi) * count / 2 - 0.5));
@@ -365,7 +365,8 @@ void buildMeshIndex(MeshObstacle& mesh) {
     index->triangles.resize(index->start[cellCount]);
     std::vector<std::size_t> next(index->start.begin(), index->start.end() - 1);
     for (std::size_t t = 0; t < count; ++t) {
-        forCells(index->cells[t], [&](std::size_t cell) { index->triangles[next[cell]++] = int(t); });
+        forCells(index->cells[t],
+                 [&](std::size_t cell) { index->triangles[next[cell]++] = int(t); });
     }
     mesh.index = std::move(index);
 }

@@ -11,11 +11,12 @@
 namespace weir {
 
 // Samples the walls and obstacles at spacing d (only within 2 h and the layers of the container:
-// an obstacle that sticks out is sampled where fluid can feel it): the container's faces d/2 outside its walls and
-// each obstacle's surface d/2 inside it, so that the first fluid layer (seeded d/2 from a wall)
-// sits one spacing from the boundary layer, as in the fluid lattice; and further layers d apart
-// as far as a fluid particle at the wall can see (boundaryLayers: 1 at h = 2d, 2 at h = 3d).
-// Points closer than d/2 to an earlier one are dropped (box edges, shared mesh edges).
+// an obstacle that sticks out is sampled where fluid can feel it): the container's faces d/2
+// outside its walls and each obstacle's surface d/2 inside it, so that the first fluid layer
+// (seeded d/2 from a wall) sits one spacing from the boundary layer, as in the fluid lattice; and
+// further layers d apart as far as a fluid particle at the wall can see (boundaryLayers: 1 at h =
+// 2d, 2 at h = 3d). Points closer than d/2 to an earlier one are dropped (box edges, shared mesh
+// edges).
 std::vector<Vec3d> sampleBoundary(const Scene& scene, double d, double h);
 // Layers of boundary particles for smoothing radius h and spacing d: as many as the kernel
 // reaches past the first (1 at h = 2d, 2 at h = 3d), or with fullSupport every layer a fluid

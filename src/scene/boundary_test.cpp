@@ -292,8 +292,7 @@ MeshObstacle uvSphere(const Vec3d& centre, double radius, int rings, int segment
         const double theta = kPi * r / rings;
         for (int s = 0; s < segments; ++s) {
             const double phi = 2 * kPi * s / segments;
-            mesh.vertices.push_back(centre + Vec3d(std::sin(theta) * std::cos(phi),
-                                                   std::cos(theta),
+            mesh.vertices.push_back(centre + Vec3d(std::sin(theta) * std::cos(phi), std::cos(theta),
                                                    std::sin(theta) * std::sin(phi)) *
                                                  radius);
         }

@@ -56,8 +56,8 @@ std::string binaryStl(float x) {
 
 TEST_F(MeshFileTest, BinaryStlRefusesNonFiniteAndHugeCoordinates) {
     EXPECT_EQ(readMeshFile(write("ok.stl", binaryStl(0.5f))).triangles.size(), 1u);
-    for (float bad : {std::numeric_limits<float>::quiet_NaN(),
-                      std::numeric_limits<float>::infinity(), 3e38f}) {
+    for (float bad :
+         {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), 3e38f}) {
         const std::string message = error("bad.stl", binaryStl(bad));
         EXPECT_NE(message.find("triangle 1 of 1"), std::string::npos) << message;
         EXPECT_NE(message.find("vertex 1 x"), std::string::npos) << message;

@@ -175,8 +175,8 @@ struct SyntaxCheck : nlohmann::json_sax<Json> {
 Json parseJson(const std::string& text, const std::string& source) {
     if (std::optional<std::size_t> at = tooDeep(text, kMaxJsonDepth)) {
         throw SceneError("scene '" + source + "': invalid JSON at " + lineAndColumn(text, *at) +
-                         ": arrays and objects nested more than " +
-                         std::to_string(kMaxJsonDepth) + " deep (a scene needs 4)");
+                         ": arrays and objects nested more than " + std::to_string(kMaxJsonDepth) +
+                         " deep (a scene needs 4)");
     }
     SyntaxCheck check;
     if (!Json::sax_parse(text, &check, Json::input_format_t::json, /*strict=*/true,
@@ -536,47 +536,51 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
         scene.obstacleSpheres.push_back(readSphere(r));
     });
     std::size_t meshTriangles = 0;
-    obstacles.forEach("meshes", {"file", "scale", "translate"}, [&](const FieldReader& r) {
-        MeshObstacle mesh;
-        r.require("file", "an OBJ or STL file name");
-        mesh.file = r.string("file", "");
-        mesh.scale = r.number("scale", kLength, 1.0);
-        mesh.translate = r.vec3("translate", Vec3d{});
-        // Relative to the scene file's folder (the working directory for built-in scenes).
-        std::filesystem::path file(mesh.file);
-        if (file.is_relative() && source.find('<') != 0) {
-            file = std::filesystem::path(source).parent_path() / file;
-        }
-        try {
-            MeshData data = readMeshFile(file.string());
-            for (const Vec3d& v : data.vertices) {
-                mesh.vertices.push_back(v * mesh.scale + mesh.translate);
+    obstacles.forEach(
+        "meshes", {"file", "scale", "translate"},
+        [&](const FieldReader& r) {
+            MeshObstacle mesh;
+            r.require("file", "an OBJ or STL file name");
+            mesh.file = r.string("file", "");
+            mesh.scale = r.number("scale", kLength, 1.0);
+            mesh.translate = r.vec3("translate", Vec3d{});
+            // Relative to the scene file's folder (the working directory for built-in scenes).
+            std::filesystem::path file(mesh.file);
+            if (file.is_relative() && source.find('<') != 0) {
+                file = std::filesystem::path(source).parent_path() / file;
             }
-            mesh.triangles = std::move(data.triangles);
-        } catch (const std::runtime_error& e) {
-            r.fail(r.pathOf("file"), r.written("file"),
-                   "a readable OBJ or STL file (" + file.string() + ": " + e.what() + ")");
-        }
-        for (const Vec3d& v : mesh.vertices) {
-            for (int a = 0; a < 3; ++a) {
-                if (!(std::fabs(v[a]) <= 10 * kMaxCoordinate)) {
-                    r.fail(r.pathOf("scale"), r.written("scale"),
-                           "a scale that keeps the mesh " + file.string() + " within " +
-                               formatNumber(10 * kMaxCoordinate) +
-                               " m of the origin (a vertex lands at " + formatVec(v) + ")");
+            try {
+                MeshData data = readMeshFile(file.string());
+                for (const Vec3d& v : data.vertices) {
+                    mesh.vertices.push_back(v * mesh.scale + mesh.translate);
+                }
+                mesh.triangles = std::move(data.triangles);
+            } catch (const std::runtime_error& e) {
+                r.fail(r.pathOf("file"), r.written("file"),
+                       "a readable OBJ or STL file (" + file.string() + ": " + e.what() + ")");
+            }
+            for (const Vec3d& v : mesh.vertices) {
+                for (int a = 0; a < 3; ++a) {
+                    if (!(std::fabs(v[a]) <= 10 * kMaxCoordinate)) {
+                        r.fail(r.pathOf("scale"), r.written("scale"),
+                               "a scale that keeps the mesh " + file.string() + " within " +
+                                   formatNumber(10 * kMaxCoordinate) +
+                                   " m of the origin (a vertex lands at " + formatVec(v) + ")");
+                    }
                 }
             }
-        }
-        meshTriangles += mesh.triangles.size();
-        if (meshTriangles > kMaxMeshTriangles) {
-            r.fail(r.pathOf("file"), r.written("file"),
-                   "a mesh that keeps the scene's meshes at " + std::to_string(kMaxMeshTriangles) +
-                       " triangles in all (" + file.string() + " brings them to " +
-                       std::to_string(meshTriangles) + ")");
-        }
-        buildMeshIndex(mesh);
-        scene.obstacleMeshes.push_back(std::move(mesh));
-    }, kMaxMeshes);
+            meshTriangles += mesh.triangles.size();
+            if (meshTriangles > kMaxMeshTriangles) {
+                r.fail(r.pathOf("file"), r.written("file"),
+                       "a mesh that keeps the scene's meshes at " +
+                           std::to_string(kMaxMeshTriangles) + " triangles in all (" +
+                           file.string() + " brings them to " + std::to_string(meshTriangles) +
+                           ")");
+            }
+            buildMeshIndex(mesh);
+            scene.obstacleMeshes.push_back(std::move(mesh));
+        },
+        kMaxMeshes);
 
     FieldReader fluid =
         top.object("fluid", {"preset", "restDensity", "viscosity", "stiffness", "eos",

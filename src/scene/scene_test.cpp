@@ -405,7 +405,8 @@ TEST(Scene, DeepNestingIsRefusedWithItsPlace) {
     message = errorOf(R"({"name": "[[[[{{{{", /* [[[[ */
         "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
         "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}], // {{{{
-        "gravity": )" + deepest + "}");
+        "gravity": )" +
+                      deepest + "}");
     EXPECT_TRUE(contains(message, "'gravity' is [[[[[[[[")) << message;  // a value, not nesting
     EXPECT_TRUE(contains(message, "an array of 3 finite numbers")) << message;
 }

@@ -76,9 +76,8 @@ constexpr double kEstimatePoints = 4194304.0;  // 2^22
 
 // Points of lattice l kept, tested on every stride-th point along each axis and scaled up.
 double estimateKept(const SceneSeeds& seeds, const SeedShapes& shapes, const SeedLattice& l) {
-    const std::int64_t stride =
-        std::max<std::int64_t>(1, std::int64_t(std::ceil(std::cbrt(double(l.points()) /
-                                                                   kEstimatePoints))));
+    const std::int64_t stride = std::max<std::int64_t>(
+        1, std::int64_t(std::ceil(std::cbrt(double(l.points()) / kEstimatePoints))));
     const std::int64_t sx = (l.nx + stride - 1) / stride, sy = (l.ny + stride - 1) / stride,
                        sz = (l.nz + stride - 1) / stride;
     const std::int64_t samples = sx * sy * sz;
@@ -173,19 +172,17 @@ SceneSeeds sceneSeeds(const Scene& scene, double d, std::int64_t limit) {
             continue;
         }
         if (double(l.points()) > kMaxTestedPoints) {
-            throw SceneError("scene '" + scene.sourcePath + "': " + shapeName(seeds, l.shape) +
-                             " spans " + std::to_string(l.points()) + " lattice points at spacing " +
-                             std::to_string(d) + " m, more than the " +
-                             std::to_string(std::int64_t(kMaxTestedPoints)) +
-                             " weir tests one by one, for about " +
-                             std::to_string(std::int64_t(estimate)) +
-                             " particles; make it fit the fluid more closely (obstacles take most "
-                             "of it) or use a larger particles.spacing");
+            throw SceneError(
+                "scene '" + scene.sourcePath + "': " + shapeName(seeds, l.shape) + " spans " +
+                std::to_string(l.points()) + " lattice points at spacing " + std::to_string(d) +
+                " m, more than the " + std::to_string(std::int64_t(kMaxTestedPoints)) +
+                " weir tests one by one, for about " + std::to_string(std::int64_t(estimate)) +
+                " particles; make it fit the fluid more closely (obstacles take most "
+                "of it) or use a larger particles.spacing");
         }
         // In chunks, so that counting stops soon after the limit.
         constexpr std::int64_t kChunk = std::int64_t(1) << 24;
-        for (std::int64_t start = 0; start < l.points() && seeds.count <= limit;
-             start += kChunk) {
+        for (std::int64_t start = 0; start < l.points() && seeds.count <= limit; start += kChunk) {
             const std::int64_t end = std::min(l.points(), start + kChunk);
             std::int64_t kept = 0;
 #pragma omp parallel for reduction(+ : kept) schedule(static)

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
-#include <utility>
 #include <sstream>
+#include <utility>
 
 #include "core/exec_cpu.h"
 #include "grid/cell_id.h"
@@ -134,13 +134,12 @@ struct HostBudget {
                               std::to_string(deviceFreeBytes >> 20) + " MiB free: at most " +
                               std::to_string(deviceMaxParticles) + " particles fit" + hint);
         }
-        return SceneError(where + ": " + (about ? "about " : "") + fmt(count) +
-                          " particles at spacing " + fmt(d) + " m need about " +
-                          fmt(count * double(perParticle) / double(1 << 20)) +
-                          " MiB of host memory (" + std::to_string(perParticle) +
-                          " bytes each) but it has " + std::to_string(freeBytes >> 20) +
-                          " MiB free: at most " + std::to_string(maxParticles) +
-                          " particles fit" + hint);
+        return SceneError(
+            where + ": " + (about ? "about " : "") + fmt(count) + " particles at spacing " +
+            fmt(d) + " m need about " + fmt(count * double(perParticle) / double(1 << 20)) +
+            " MiB of host memory (" + std::to_string(perParticle) + " bytes each) but it has " +
+            std::to_string(freeBytes >> 20) + " MiB free: at most " + std::to_string(maxParticles) +
+            " particles fit" + hint);
     }
 };
 
@@ -174,10 +173,11 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     // Resolution: spacing given, or the spacing whose lattice holds the wanted count.
     report.fluidVolume = fluidVolume(scene);
     const std::optional<std::int64_t> wantedCount =
-        options.particleCount ? options.particleCount
-                              : (scene.spacing ? std::nullopt
-                                               : std::optional<std::int64_t>(scene.particleCount.value_or(
-                                                     kDefaultParticleCount)));
+        options.particleCount
+            ? options.particleCount
+            : (scene.spacing ? std::nullopt
+                             : std::optional<std::int64_t>(
+                                   scene.particleCount.value_or(kDefaultParticleCount)));
     if (wantedCount && *wantedCount > budget.limit()) {
         throw budget.tooMany(where, double(*wantedCount),
                              std::cbrt(report.fluidVolume / double(*wantedCount)), true);
@@ -538,17 +538,17 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         } catch (const SceneError& e) {
             throw SceneError(where + ": " + e.what());
         }
-        const double boundaryBytes =
-            boundaryPoints * 200.0 + 8.0 * double(setup.grid.dims[0] + 2) *
-                                         double(setup.grid.dims[1] + 2) *
-                                         double(setup.grid.dims[2] + 2);
-        const double spare = double(budget.usable) -
-                             double(setup.particleCount()) * double(budget.perParticle);
+        const double boundaryBytes = boundaryPoints * 200.0 + 8.0 * double(setup.grid.dims[0] + 2) *
+                                                                  double(setup.grid.dims[1] + 2) *
+                                                                  double(setup.grid.dims[2] + 2);
+        const double spare =
+            double(budget.usable) - double(setup.particleCount()) * double(budget.perParticle);
         if (boundaryPoints > double(kMaxParticles) || boundaryBytes > spare) {
             throw SceneError(
                 where + ": the walls and obstacles take up to " + fmt(boundaryPoints) +
                 " boundary particles at spacing " + fmt(d) + " m, about " +
-                fmt(boundaryBytes / double(1 << 20)) + " MiB with their grid, but host memory has " +
+                fmt(boundaryBytes / double(1 << 20)) +
+                " MiB with their grid, but host memory has " +
                 fmt(std::max(0.0, spare) / double(1 << 20)) +
                 " MiB to spare; use a larger particles.spacing, a smaller container or "
                 "obstacles, or walls.model \"simple\"");

@@ -680,9 +680,9 @@ TEST(Setup, TooManyParticlesFailBeforeSeedingNamingWhatFits) {
     options.particleCount = 2147483647;
     const std::size_t freeBytes = *options.hostFreeBytes;
     const std::size_t usable = freeBytes - (std::size_t(256) << 20) - freeBytes / 10;
-    const std::size_t perParticle = 8 * sizeof(Real) +
-                                    std::min(bytesPerParticleEstimate(NeighbourMode::Grid),
-                                             bytesPerParticleEstimate(NeighbourMode::Dense));
+    const std::size_t perParticle =
+        8 * sizeof(Real) + std::min(bytesPerParticleEstimate(NeighbourMode::Grid),
+                                    bytesPerParticleEstimate(NeighbourMode::Dense));
     const std::string fit = std::to_string(usable / perParticle);
 
     auto start = std::chrono::steady_clock::now();
@@ -703,10 +703,9 @@ TEST(Setup, TooManyParticlesFailBeforeSeedingNamingWhatFits) {
     })",
                              options);
     EXPECT_TRUE(contains(message, "at most " + fit + " particles fit")) << message;
-    for (const char* fluid : {
-             R"("blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}])",
-             R"("spheres": [{"center": [0.5, 0.5, 0.5], "radius": 0.4}])",
-             R"("blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}],
+    for (const char* fluid : {R"("blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}])",
+                              R"("spheres": [{"center": [0.5, 0.5, 0.5], "radius": 0.4}])",
+                              R"("blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}],
                 "obstacles": {"boxes": [{"min": [0.2, 0, 0.2], "max": [0.4, 0.3, 0.4]}]})"}) {
         message = setupErrorWith(R"({"container": {"min": [0, 0, 0], "max": [1, 1, 1]},
                                      "particles": {"spacing": 1e-4}, )" +
@@ -729,8 +728,8 @@ TEST(Setup, TooManyParticlesFailBeforeSeedingNamingWhatFits) {
     options.backend.reset();
     options.particleCount = 2147483647;
     message = setupErrorWith(tank, options);
-    EXPECT_TRUE(contains(message, "at most " + std::to_string(usable / (8 * sizeof(Real))) +
-                                      " particles fit"))
+    EXPECT_TRUE(contains(
+        message, "at most " + std::to_string(usable / (8 * sizeof(Real))) + " particles fit"))
         << message;
 }
 

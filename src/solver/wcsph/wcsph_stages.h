@@ -84,12 +84,11 @@ WEIR_HD inline Vec3 accelerationOf(Index i, const ParticleView& pv, const Neighb
         },
         team);
     force = Vec3(team.sum(force.x), team.sum(force.y), team.sum(force.z));
-    const Vec3 walls =
-        params.walls == WallKind::Simple
-            ? wallAcceleration(params.wallWeight, params.boxMin, params.boxMax, xi, rhoi, pi,
-                               params.periodicAxes)
-            : boundaryAcceleration(pv.boundary, params.kernel, xi, vi.xyz(), rhoi, pi,
-                                   params.wallViscosity, params.invRestDensity);
+    const Vec3 walls = params.walls == WallKind::Simple
+                           ? wallAcceleration(params.wallWeight, params.boxMin, params.boxMax, xi,
+                                              rhoi, pi, params.periodicAxes)
+                           : boundaryAcceleration(pv.boundary, params.kernel, xi, vi.xyz(), rhoi,
+                                                  pi, params.wallViscosity, params.invRestDensity);
     return force / rhoi + params.gravity + walls;
 }
 
