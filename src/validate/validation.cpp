@@ -3,15 +3,18 @@
 #include "validate/validation.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <sstream>
+#include <utility>
 
 #include "core/check.h"
 #include "scene/scene.h"
@@ -42,16 +45,67 @@ std::string box(double x, double y, double z) {
     return "[" + num(x) + ", " + num(y) + ", " + num(z) + "]";
 }
 
-// The fluid section of a validation scene: a preset, the model asked for (or the default).
-std::string fluidJson(const std::string& preset, const std::string& model) {
+// The fluid section of a validation scene: a preset, `fields` (more "name": value pairs, each
+// led by a comma), the model asked for (or the default).
+std::string fluidJson(const std::string& preset, const std::string& model,
+                      const std::string& fields = "") {
     std::string json = R"({"preset": ")" + preset + "\"";
     if (preset == "water") {
         json += R"(, "restDensity": 1000)";
     }
+    json += fields;
     if (!model.empty()) {
         json += R"(, "model": ")" + model + "\"";
     }
     return json + "}";
+}
+
+// The scene of one case: a container from the origin (periodic along `periodic`) holding one
+// block of fluid from the origin corner; `extra`: more top-level fields, each led by a comma.
+struct CaseScene {
+    CaseScene(std::string name_, const Vec3d& container_, const Vec3d& block_,
+              std::array<bool, 3> periodic_ = {})
+        : name(std::move(name_)), container(container_), block(block_), periodic(periodic_) {}
+    std::string name;  // the scene's name, validate_NAME; errors say "<validate NAME>"
+    Vec3d container, block;
+    std::array<bool, 3> periodic;
+    std::string fluid;
+    double spacing = 0, duration = 0, frameRate = 0;
+    std::string walls = R"({"model": "particles"})";  // "" leaves the scene's default
+    std::string extra;
+};
+
+std::string sceneJson(const CaseScene& c) {
+    auto flag = [](bool b) { return std::string(b ? "true" : "false"); };
+    return R"({"name": "validate_)" + c.name + R"(", "container": {"min": [0, 0, 0], "max": )" +
+           box(c.container.x, c.container.y, c.container.z) + R"(, "periodic": [)" +
+           flag(c.periodic[0]) + ", " + flag(c.periodic[1]) + ", " + flag(c.periodic[2]) +
+           R"(]}, "blocks": [{"min": [0, 0, 0], "max": )" + box(c.block.x, c.block.y, c.block.z) +
+           R"(}], "fluid": )" + c.fluid + R"(, "particles": {"spacing": )" + num(c.spacing) + "}" +
+           (c.walls.empty() ? "" : R"(, "walls": )" + c.walls) + c.extra +
+           R"(, "time": {"duration": )" + num(c.duration) + R"(, "frameRate": )" +
+           num(c.frameRate) + "}}";
+}
+
+// A case's simulation through the ordinary scene path; `adjust` may change the initial
+// particles before they go to the backend. `scene` and `report` receive what was derived.
+std::unique_ptr<Simulation> startCase(const ValidationOptions& o, const CaseScene& c, Scene& scene,
+                                      SetupReport& report,
+                                      const std::function<void(SimulationSetup&)>& adjust = {}) {
+    scene = parseScene(sceneJson(c), "<validate " + c.name + ">");
+    SimulationSetup setup = buildSetup(scene, {}, &report);
+    if (adjust) {
+        adjust(setup);
+    }
+    return makeSimulation(o.backend, NeighbourMode::Auto, std::move(setup));
+}
+
+// Advances to time t; a blow-up throws with the case's name and the diagnosis.
+void advanceCase(Simulation& sim, double t, const std::string& what) {
+    sim.advanceTo(t);
+    if (sim.fault().code != 0) {
+        throw SimulationError(what + ": " + describeFault(sim.fault(), sim.params()));
+    }
 }
 
 void say(const ValidationOptions& o, const std::string& line) {
@@ -63,23 +117,15 @@ void say(const ValidationOptions& o, const std::string& line) {
 // A tank of water depth H, width H and a slab 6 d deep, walls of boundary particles.
 void runTank(const ValidationOptions& o, ValidationReport& r) {
     const double H = 0.3, d = H / o.tankResolution, W = 6 * d;
-    const std::string json = R"({"name": "validate_hydrostatic",
-        "container": {"min": [0, 0, 0], "max": )" +
-                             box(H, 1.5 * H, W) + R"(},
-        "blocks": [{"min": [0, 0, 0], "max": )" +
-                             box(H, H, W) + R"(}],
-        "fluid": )" + fluidJson("water", o.model) +
-                             R"(,
-        "particles": {"spacing": )" +
-                             num(d) + R"(},
-        "walls": {"model": "particles"},
-        "time": {"duration": )" +
-                             num(o.settleTime) + R"(, "frameRate": 10}})";
-    Scene scene = parseScene(json, "<validate hydrostatic>");
+    CaseScene spec{"hydrostatic", {H, 1.5 * H, W}, {H, H, W}};
+    spec.fluid = fluidJson("water", o.model);
+    spec.spacing = d;
+    spec.duration = o.settleTime;
+    spec.frameRate = 10;
+    Scene scene;
     SetupReport setupReport;
-    SimulationSetup setup = buildSetup(scene, {}, &setupReport);
+    auto sim = startCase(o, spec, scene, setupReport);
     const double h = setupReport.smoothingRadius;
-    auto sim = makeSimulation(o.backend, NeighbourMode::Auto, std::move(setup));
     r.tankParticles = int(sim->particleCount());
     r.tankDepth = H;
     r.tankSpacing = d;
@@ -100,11 +146,7 @@ void runTank(const ValidationOptions& o, ValidationReport& r) {
     const int averaged = 9;  // frames over the last 40% of the run, every 5%
     const int columnsX = std::max(1, int(std::floor(H / d))), columnsZ = std::max(1, int(W / d));
     for (int k = 0; k < averaged; ++k) {
-        sim->advanceTo(o.settleTime * (0.6 + 0.05 * k));
-        if (sim->fault().code != 0) {
-            throw SimulationError("hydrostatic tank: " +
-                                  describeFault(sim->fault(), sim->params()));
-        }
+        advanceCase(*sim, o.settleTime * (0.6 + 0.05 * k), "hydrostatic tank");
         sim->download(p);
         const DensityDeviation dev = densityDeviation(p, 1000.0);
         worst.max = std::max(worst.max, dev.max);
@@ -206,23 +248,15 @@ FrontRun runDamBreak(const ValidationOptions& o, int resolution, const std::stri
     const double endTime = o.damEndT / timeScale;
     const double length = a * (1.5 + 1.4 * o.damEndT);  // past the front at the end
     const double frameRate = timeScale / 0.125;         // a frame every 0.125 in T
-    const std::string json = R"({"name": "validate_martin_moyce",
-        "container": {"min": [0, 0, 0], "max": )" +
-                             box(length, 1.5 * height, depth) +
-                             R"(, "periodic": [false, false, true]},
-        "blocks": [{"min": [0, 0, 0], "max": )" +
-                             box(a, height, depth) + R"(}],
-        "fluid": )" + fluidJson(preset, o.model) +
-                             R"(,
-        "particles": {"spacing": )" +
-                             num(d) + R"(},
-        "walls": {"model": "particles"},
-        "time": {"duration": )" +
-                             num(endTime) + R"(, "frameRate": )" + num(frameRate) + "}}";
-    Scene scene = parseScene(json, "<validate dam break>");
+    CaseScene spec{
+        "martin_moyce", {length, 1.5 * height, depth}, {a, height, depth}, {false, false, true}};
+    spec.fluid = fluidJson(preset, o.model);
+    spec.spacing = d;
+    spec.duration = endTime;
+    spec.frameRate = frameRate;
+    Scene scene;
     SetupReport setupReport;
-    SimulationSetup setup = buildSetup(scene, {}, &setupReport);
-    auto sim = makeSimulation(o.backend, NeighbourMode::Auto, std::move(setup));
+    auto sim = startCase(o, spec, scene, setupReport);
     FrontRun run;
     run.fluid = preset;
     run.resolution = resolution;
@@ -234,11 +268,8 @@ FrontRun runDamBreak(const ValidationOptions& o, int resolution, const std::stri
     HostParticles p;
     for (std::int64_t k = 1; k <= setupReport.frames; ++k) {
         const double t = double(k) / frameRate;
-        sim->advanceTo(t);
-        if (sim->fault().code != 0) {
-            throw SimulationError("dam break (" + preset + ", " + std::to_string(resolution) +
-                                  " across): " + describeFault(sim->fault(), sim->params()));
-        }
+        advanceCase(*sim, t,
+                    "dam break (" + preset + ", " + std::to_string(resolution) + " across)");
         sim->download(p);
         // The leading edge: the furthest particle, plus half a spacing (its share of the front).
         double front = 0;
@@ -342,30 +373,21 @@ ChannelRun runChannel(const ValidationOptions& o, const std::string& flow) {
     const int n = o.channelResolution;
     const double d = L / n, lx = 8 * d, lz = 6 * d, c = 10 * scale;
     const bool poiseuille = flow == "poiseuille";
-    const std::string json =
-        R"({"name": "validate_)" + flow + R"(",
-        "container": {"min": [0, 0, 0], "max": )" +
-        box(lx, L, lz) +
-        R"(, "periodic": [true, false, true]},
-        "blocks": [{"min": [0, 0, 0], "max": )" +
-        box(lx, L, lz) + R"(}],
-        "fluid": {"preset": "water", "restDensity": 1000, "viscosity": 0.001, "stiffness": )" +
-        num(c * c) + (o.model.empty() ? "" : R"(, "model": ")" + o.model + R"(")") + R"(},
-        "particles": {"spacing": )" +
-        num(d) + R"(},
-        "gravity": )" +
-        (poiseuille ? box(F, 0, 0) : box(0, 0, 0)) + R"(,
-        "walls": {"model": "particles", "slip": "no-slip")" +
+    CaseScene spec{flow, {lx, L, lz}, {lx, L, lz}, {true, false, true}};
+    spec.fluid = fluidJson("water", o.model, R"(, "viscosity": 0.001, "stiffness": )" + num(c * c));
+    spec.spacing = d;
+    spec.duration = 0.5;
+    spec.frameRate = 40;
+    spec.walls =
+        R"({"model": "particles", "slip": "no-slip")" +
         (poiseuille ? std::string()
                     : R"(, "moving": [{"face": "+y", "velocity": )" + box(scale, 0, 0) + "}]") +
-        R"(},
-        "limits": {"maxSpeed": )" +
-        num(100 * scale) + R"(},
-        "time": {"duration": 0.5, "frameRate": 40}})";
-    Scene scene = parseScene(json, "<validate " + flow + ">");
+        "}";
+    spec.extra = R"(, "gravity": )" + (poiseuille ? box(F, 0, 0) : box(0, 0, 0)) +
+                 R"(, "limits": {"maxSpeed": )" + num(100 * scale) + "}";
+    Scene scene;
     SetupReport setupReport;
-    SimulationSetup setup = buildSetup(scene, {}, &setupReport);
-    auto sim = makeSimulation(o.backend, NeighbourMode::Auto, std::move(setup));
+    auto sim = startCase(o, spec, scene, setupReport);
     ChannelRun run;
     run.flow = flow;
     run.resolution = n;
@@ -378,10 +400,7 @@ ChannelRun runChannel(const ValidationOptions& o, const std::string& flow) {
     const auto start = std::chrono::steady_clock::now();
     HostParticles p;
     for (double theta : {0.0225, 0.045, 0.1125, 0.225, 0.5}) {
-        sim->advanceTo(theta * L * L / nu);
-        if (sim->fault().code != 0) {
-            throw SimulationError(flow + " flow: " + describeFault(sim->fault(), sim->params()));
-        }
+        advanceCase(*sim, theta * L * L / nu, flow + " flow");
         sim->download(p);
         std::vector<double> sum(std::size_t(n), 0.0);
         std::vector<int> count(std::size_t(n), 0);
@@ -455,24 +474,15 @@ void runLobovsky(const ValidationOptions& o, ValidationReport& r) {
     const double H = 0.3, L = 0.6, length = 1.61, d = H / o.lobovskyResolution, depth = 4 * d;
     const double tauScale = std::sqrt(kG / H), travel = (length - L) / H;
     const double endTau = 6.5;
-    const std::string json = R"({"name": "validate_lobovsky",
-        "container": {"min": [0, 0, 0], "max": )" +
-                             box(length, 0.6, depth) +
-                             R"(, "periodic": [false, false, true]},
-        "blocks": [{"min": [0, 0, 0], "max": )" +
-                             box(L, H, depth) + R"(}],
-        "fluid": )" + fluidJson("water", o.model) +
-                             R"(,
-        "particles": {"spacing": )" +
-                             num(d) + R"(},
-        "walls": {"model": "particles"},
-        "time": {"duration": )" +
-                             num(endTau / tauScale) + R"(, "frameRate": 100}})";
-    Scene scene = parseScene(json, "<validate lobovsky>");
+    CaseScene spec{"lobovsky", {length, 0.6, depth}, {L, H, depth}, {false, false, true}};
+    spec.fluid = fluidJson("water", o.model);
+    spec.spacing = d;
+    spec.duration = endTau / tauScale;
+    spec.frameRate = 100;
+    Scene scene;
     SetupReport setupReport;
-    SimulationSetup setup = buildSetup(scene, {}, &setupReport);
+    auto sim = startCase(o, spec, scene, setupReport);
     const double support = setupReport.smoothingRadius, rhogH = scene.restDensity * kG * H;
-    auto sim = makeSimulation(o.backend, NeighbourMode::Auto, std::move(setup));
     LobovskyRun run;
     run.resolution = o.lobovskyResolution;
     run.particles = int(sim->particleCount());
@@ -483,11 +493,7 @@ void runLobovsky(const ValidationOptions& o, ValidationReport& r) {
     // Every 0.01 in tau: the impacts are short (the first peak rises in ~0.1).
     for (int k = 1; k <= int(std::lround(endTau / 0.01)); ++k) {
         const double tau = 0.01 * k;
-        sim->advanceTo(tau / tauScale);
-        if (sim->fault().code != 0) {
-            throw SimulationError("Lobovsky dam break: " +
-                                  describeFault(sim->fault(), sim->params()));
-        }
+        advanceCase(*sim, tau / tauScale, "Lobovsky dam break");
         sim->download(p);
         double front = 0;
         for (std::size_t i = 0; i < p.size(); ++i) {
@@ -577,34 +583,29 @@ void runTaylorGreen(const ValidationOptions& o, ValidationReport& r) {
     const double L = 1, U = 1, nu = 0.01, rho0 = 1000, c = 10 * U;
     const int n = o.taylorGreenResolution;
     const double d = L / n, depth = 4 * d;
-    const std::string json = R"({"name": "validate_taylor_green",
-        "container": {"min": [0, 0, 0], "max": )" +
-                             box(L, L, depth) +
-                             R"(, "periodic": [true, true, true]},
-        "blocks": [{"min": [0, 0, 0], "max": )" +
-                             box(L, L, depth) + R"(}],
-        "fluid": {"restDensity": 1000, "viscosity": )" +
-                             num(rho0 * nu) + R"(, "stiffness": )" + num(c * c) +
-                             (o.model.empty() ? "" : R"(, "model": ")" + o.model + R"(")") + R"(},
-        "particles": {"spacing": )" +
-                             num(d) + R"(},
-        "gravity": [0, 0, 0],
-        "limits": {"maxSpeed": )" +
-                             num(20 * U) + R"(},
-        "time": {"duration": 2, "frameRate": 8}})";
-    Scene scene = parseScene(json, "<validate taylor-green>");
+    CaseScene spec{"taylor_green", {L, L, depth}, {L, L, depth}, {true, true, true}};
+    spec.fluid =
+        fluidJson("water", o.model,
+                  R"(, "viscosity": )" + num(rho0 * nu) + R"(, "stiffness": )" + num(c * c));
+    spec.spacing = d;
+    spec.duration = 2;
+    spec.frameRate = 8;
+    spec.walls = "";
+    spec.extra = R"(, "gravity": [0, 0, 0], "limits": {"maxSpeed": )" + num(20 * U) + "}";
+    Scene scene;
     SetupReport setupReport;
-    SimulationSetup setup = buildSetup(scene, {}, &setupReport);
-    WEIR_REQUIRE(!setup.seeder, "weir validate: the Taylor-Green particles were not on the host");
-    HostParticles& init = setup.particles;
-    for (std::size_t i = 0; i < init.size(); ++i) {
-        const double kx = 2 * kPiD * init.x[i] / L, ky = 2 * kPiD * init.y[i] / L;
-        init.vx[i] = Real(-U * std::cos(kx) * std::sin(ky));
-        init.vy[i] = Real(U * std::sin(kx) * std::cos(ky));
-        const double p = -rho0 * U * U / 4 * (std::cos(2 * kx) + std::cos(2 * ky));
-        init.rho[i] = Real(rho0 + p / (c * c));
-    }
-    auto sim = makeSimulation(o.backend, NeighbourMode::Auto, std::move(setup));
+    auto sim = startCase(o, spec, scene, setupReport, [&](SimulationSetup& setup) {
+        WEIR_REQUIRE(!setup.seeder,
+                     "weir validate: the Taylor-Green particles were not on the host");
+        HostParticles& init = setup.particles;
+        for (std::size_t i = 0; i < init.size(); ++i) {
+            const double kx = 2 * kPiD * init.x[i] / L, ky = 2 * kPiD * init.y[i] / L;
+            init.vx[i] = Real(-U * std::cos(kx) * std::sin(ky));
+            init.vy[i] = Real(U * std::sin(kx) * std::cos(ky));
+            const double p = -rho0 * U * U / 4 * (std::cos(2 * kx) + std::cos(2 * ky));
+            init.rho[i] = Real(rho0 + p / (c * c));
+        }
+    });
     r.tgvResolution = n;
     say(o, "Taylor-Green vortex, Re 100, " + std::to_string(n) + " across, " +
                std::to_string(sim->particleCount()) + " particles");
@@ -614,11 +615,7 @@ void runTaylorGreen(const ValidationOptions& o, ValidationReport& r) {
     for (int k = 0; k <= 16; ++k) {
         const double t = 0.125 * k;
         if (k > 0) {
-            sim->advanceTo(t);
-            if (sim->fault().code != 0) {
-                throw SimulationError("Taylor-Green vortex: " +
-                                      describeFault(sim->fault(), sim->params()));
-            }
+            advanceCase(*sim, t, "Taylor-Green vortex");
         }
         sim->download(p);
         double energy = 0;
