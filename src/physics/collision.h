@@ -71,25 +71,39 @@ WEIR_HD inline void collide(Vec3& x, Vec3& v, const SphParams& params,
     }
     for (int b = 0; b < obstacles.boxCount; ++b) {
         const ObstacleBox box = obstacles.boxes[b];
-        bool inside = x.x > box.min.x && x.x < box.max.x && x.y > box.min.y && x.y < box.max.y &&
-                      x.z > box.min.z && x.z < box.max.z;
+        // A face on or past a container wall (a box standing on the floor) is blocked: the wall
+        // holds particles there, on the face itself, so the box is closed on that side and no
+        // particle is sent out through it (it would land on the wall, still under the box, and
+        // slide through).
+        bool blocked[6];
+        bool inside = true;
+        for (int a = 0; a < 3; ++a) {
+            const bool wall = !isPeriodic(params, a);
+            blocked[2 * a] = wall && box.min[a] <= params.boxMin[a];
+            blocked[2 * a + 1] = wall && box.max[a] >= params.boxMax[a];
+            inside = inside && (x[a] > box.min[a] || (blocked[2 * a] && x[a] >= box.min[a])) &&
+                     (x[a] < box.max[a] || (blocked[2 * a + 1] && x[a] <= box.max[a]));
+        }
         if (!inside) {
             continue;
         }
-        // Leave through the nearest face.
-        int axis = 0;
+        // Leave through the nearest open face (the nearest of all if every face is blocked: a
+        // box that fills the container).
+        int axis = -1;
         Real best = Real(1e30), side = 1;
-        for (int a = 0; a < 3; ++a) {
-            Real toMin = x[a] - box.min[a], toMax = box.max[a] - x[a];
-            if (toMin < best) {
-                best = toMin;
-                axis = a;
-                side = -1;
-            }
-            if (toMax < best) {
-                best = toMax;
-                axis = a;
-                side = 1;
+        for (int pass = 0; pass < 2 && axis < 0; ++pass) {
+            for (int a = 0; a < 3; ++a) {
+                const Real toMin = x[a] - box.min[a], toMax = box.max[a] - x[a];
+                if (toMin < best && (pass == 1 || !blocked[2 * a])) {
+                    best = toMin;
+                    axis = a;
+                    side = -1;
+                }
+                if (toMax < best && (pass == 1 || !blocked[2 * a + 1])) {
+                    best = toMax;
+                    axis = a;
+                    side = 1;
+                }
             }
         }
         x[axis] = side < 0 ? box.min[axis] : box.max[axis];

@@ -371,6 +371,86 @@ void buildMeshIndex(MeshObstacle& mesh) {
     mesh.index = std::move(index);
 }
 
+namespace {
+
+// The squared distance from p to triangle (a, b, c): its closest point by the Voronoi region p
+// falls in (Ericson, Real-Time Collision Detection, 5.1.5).
+double triangleDistanceSquared(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+    const Vec3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) {
+        return lengthSquared(ap);
+    }
+    const Vec3d bp = p - b;
+    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) {
+        return lengthSquared(bp);
+    }
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        return lengthSquared(ap - ab * (d1 / (d1 - d3)));
+    }
+    const Vec3d cp = p - c;
+    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) {
+        return lengthSquared(cp);
+    }
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        return lengthSquared(ap - ac * (d2 / (d2 - d6)));
+    }
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+        return lengthSquared(bp - (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
+    }
+    const double denom = 1.0 / (va + vb + vc);
+    return lengthSquared(ap - ab * (vb * denom) - ac * (vc * denom));
+}
+
+}  // namespace
+
+bool nearMesh(const MeshObstacle& mesh, const Vec3d& p, double distance) {
+    const double d2 = distance * distance;
+    auto near = [&](const std::array<int, 3>& t) {
+        return triangleDistanceSquared(p, mesh.vertices[std::size_t(t[0])],
+                                       mesh.vertices[std::size_t(t[1])],
+                                       mesh.vertices[std::size_t(t[2])]) < d2;
+    };
+    const MeshIndex* index = mesh.index.get();
+    if (index == nullptr) {
+        for (const auto& t : mesh.triangles) {
+            if (near(t)) {
+                return true;
+            }
+        }
+        return false;
+    }
+    for (int a = 0; a < 3; ++a) {
+        if (p[a] < index->lo[a] - distance || p[a] > index->hi[a] + distance) {
+            return false;
+        }
+    }
+    // The cells over p's (y, z) widened by the distance: every triangle that comes that close.
+    const int y0 = index->cellOf(p.y - distance, 0), y1 = index->cellOf(p.y + distance, 0);
+    const int z0 = index->cellOf(p.z - distance, 1), z1 = index->cellOf(p.z + distance, 1);
+    for (int z = z0; z <= z1; ++z) {
+        for (int y = y0; y <= y1; ++y) {
+            const std::size_t cell = std::size_t(z) * std::size_t(index->dims[0]) + std::size_t(y);
+            for (std::size_t k = index->start[cell]; k < index->start[cell + 1]; ++k) {
+                const int t = index->triangles[k];
+                const std::array<int, 4>& c = index->cells[std::size_t(t)];
+                if (y != std::max(y0, c[0]) || z != std::max(z0, c[2])) {
+                    continue;  // tested in an earlier cell
+                }
+                if (near(mesh.triangles[std::size_t(t)])) {
+                    return true;
+                }
+            }
+        }
+    }
+    return false;
+}
+
 bool insideMesh(const MeshObstacle& mesh, const Vec3d& p) {
     // Parity of the ray's crossings of the surface.
     int crossings = 0;

@@ -59,6 +59,8 @@ BoundaryParticles buildBoundary(const BoundarySamples& samples, const Box& conta
 // Whether p lies inside the closed triangle mesh (ray parity along +x); through mesh.index when
 // it is built (only the triangles under the ray are tested), else every triangle.
 bool insideMesh(const MeshObstacle& mesh, const Vec3d& p);
+// Whether p lies closer than `distance` to the mesh's surface (through mesh.index when built).
+bool nearMesh(const MeshObstacle& mesh, const Vec3d& p, double distance);
 // Builds mesh.index (once per mesh: the scene reader does it, and copies share it).
 void buildMeshIndex(MeshObstacle& mesh);
 

@@ -28,10 +28,10 @@ void seedLattices(Exec& exec, ParticleStore<Exec>& store, const SceneSeeds& seed
     exec.upload(obstacleBoxes, seeds.obstacleBoxes.data(), seeds.obstacleBoxes.size());
     exec.upload(fluidSpheres, seeds.fluidSpheres.data(), seeds.fluidSpheres.size());
     exec.upload(obstacleSpheres, seeds.obstacleSpheres.data(), seeds.obstacleSpheres.size());
-    const SeedShapes shapes{fluidBoxes.data(),      int(fluidBoxes.size()),
-                            fluidSpheres.data(),    int(fluidSpheres.size()),
-                            obstacleBoxes.data(),   int(obstacleBoxes.size()),
-                            obstacleSpheres.data(), int(obstacleSpheres.size())};
+    const SeedShapes shapes{
+        fluidBoxes.data(),        int(fluidBoxes.size()),      fluidSpheres.data(),
+        int(fluidSpheres.size()), obstacleBoxes.data(),        int(obstacleBoxes.size()),
+        obstacleSpheres.data(),   int(obstacleSpheres.size()), seeds.clearance};
     const bool whole = share.everything();
     constexpr std::int64_t kChunk = std::int64_t(1) << 26;
     IndexBuffer kept, mine;

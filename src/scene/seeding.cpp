@@ -24,13 +24,14 @@ Box boundsOf(const SphereShape& s) {
 // Whether every point of a block's lattice is kept: nothing else overlaps the block.
 bool blockStandsAlone(const SceneSeeds& seeds, std::size_t block) {
     const Box& box = seeds.fluidBoxes[block];
+    const Vec3d clear(seeds.clearance, seeds.clearance, seeds.clearance);
     for (const Box& b : seeds.obstacleBoxes) {
-        if (boxesOverlap(box, b)) {
+        if (boxesOverlap(box, {b.min - clear, b.max + clear})) {
             return false;
         }
     }
     for (const SphereShape& s : seeds.obstacleSpheres) {
-        if (boxesOverlap(box, boundsOf(s))) {
+        if (boxesOverlap(box, boundsOf({s.center, s.radius + seeds.clearance}))) {
             return false;
         }
     }
@@ -46,7 +47,7 @@ bool blockStandsAlone(const SceneSeeds& seeds, std::size_t block) {
 
 bool insideObstacleMesh(const SceneSeeds& seeds, const Vec3d& p) {
     for (const MeshObstacle& mesh : seeds.obstacleMeshes) {
-        if (insideMesh(mesh, p)) {
+        if (insideMesh(mesh, p) || nearMesh(mesh, p, seeds.clearance)) {
             return true;
         }
     }
@@ -54,9 +55,9 @@ bool insideObstacleMesh(const SceneSeeds& seeds, const Vec3d& p) {
 }
 
 SeedShapes SceneSeeds::shapes() const {
-    return {fluidBoxes.data(),        int(fluidBoxes.size()),     fluidSpheres.data(),
-            int(fluidSpheres.size()), obstacleBoxes.data(),       int(obstacleBoxes.size()),
-            obstacleSpheres.data(),   int(obstacleSpheres.size())};
+    return {fluidBoxes.data(),        int(fluidBoxes.size()),      fluidSpheres.data(),
+            int(fluidSpheres.size()), obstacleBoxes.data(),        int(obstacleBoxes.size()),
+            obstacleSpheres.data(),   int(obstacleSpheres.size()), clearance};
 }
 
 namespace {
@@ -104,6 +105,8 @@ SceneSeeds sceneSeeds(const Scene& scene, double d, std::int64_t limit) {
     }
     seeds.obstacleBoxes = scene.obstacleBoxes;
     seeds.obstacleSpheres = scene.obstacleSpheres;
+    // Half a spacing, less round-off: a point d/2 from a face is kept (scene/seeding.h).
+    seeds.clearance = d * (0.5 - 1e-6);
     seeds.obstacleMeshes = scene.obstacleMeshes;
     for (MeshObstacle& mesh : seeds.obstacleMeshes) {
         if (!mesh.index) {

@@ -14,6 +14,7 @@
 
 #include "core/check.h"
 #include "grid/cell_id.h"
+#include "scene/seeding.h"
 #include "solver/simulation.h"
 
 namespace weir {
@@ -318,12 +319,15 @@ TEST(Setup, NoSeedsInsideObstacles) {
                                                           "<test no obstacles>"),
                                                0.01);
     EXPECT_LT(p.size(), unobstructed.size());
-    std::size_t removed = 0;  // lattice points of the unobstructed fluid inside an obstacle
+    // Lattice points of the unobstructed fluid inside an obstacle or closer than d/2 to it (the
+    // fluid starts half a spacing clear, as from a wall).
+    const double clear = 0.005 * (1 - 2e-6);
+    std::size_t removed = 0;
     for (std::size_t i = 0; i < unobstructed.size(); ++i) {
         Vec3d x = positionOf(unobstructed, i);
-        bool blocked = strictlyInside(x, withSphere.obstacleBoxes[0]);
+        bool blocked = distanceSquaredToBox(x, withSphere.obstacleBoxes[0]) < clear * clear;
         for (const SphereShape& s : withSphere.obstacleSpheres) {
-            blocked = blocked || lengthSquared(x - s.center) < s.radius * s.radius;
+            blocked = blocked || length(x - s.center) < s.radius + clear;
         }
         removed += blocked;
     }
@@ -331,9 +335,10 @@ TEST(Setup, NoSeedsInsideObstacles) {
     EXPECT_EQ(p.size(), unobstructed.size() - removed);
     for (std::size_t i = 0; i < p.size(); ++i) {
         Vec3d x = positionOf(p, i);
-        ASSERT_FALSE(strictlyInside(x, withSphere.obstacleBoxes[0])) << i;
+        ASSERT_GE(distanceSquaredToBox(x, withSphere.obstacleBoxes[0]), 0.005 * 0.005 * (1 - 1e-5))
+            << i;
         for (const SphereShape& s : withSphere.obstacleSpheres) {
-            ASSERT_GE(lengthSquared(x - s.center), s.radius * s.radius * (1 - 1e-5)) << i;
+            ASSERT_GE(length(x - s.center), s.radius + 0.005 * (1 - 1e-5)) << i;
         }
     }
 }
