@@ -64,6 +64,10 @@ SimulationSetup shareOf(const SimulationSetup& whole, const Slab& share, std::in
         const Vec3d x(p.x[i], p.y[i], p.z[i]);
         if (share.contains(share.coordinate(x))) {
             part.particles.push(x, Vec3d(p.vx[i], p.vy[i], p.vz[i]));
+            // The density too: delta-SPH carries it from the hydrostatic start by the
+            // continuity equation (the paper's model recomputes it from positions).
+            part.particles.rho.back() = p.rho[i];
+            part.particles.p.back() = p.p[i];
             part.particleIds.push_back(Index(i));
         }
     }
