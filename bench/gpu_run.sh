@@ -29,12 +29,14 @@ if has test; then
     ./build-gpu/weir info | tee "$out/info.txt"
 fi
 if has runs; then
-    # Steps per second of whole runs (frames written), per neighbour search.
+    # Steps per second of whole runs (frames written), per neighbour search; the paper's fluid
+    # model, as the figures in NOTES.md (MODEL=delta-sph for weir's default model).
     for run in "100000 dense 3" "100000 grid 3" "100000 brute 1" "1000000 dense 3" \
                "1000000 grid 3"; do
         set -- $run
         echo "== $1 particles, $2 neighbours"
-        ./build-gpu/weir run --particles "$1" --neighbours "$2" --frames "$3" -q -o "/tmp/run$1$2" \
+        ./build-gpu/weir run --model "${MODEL:-paper}" --particles "$1" --neighbours "$2" \
+            --frames "$3" -q -o "/tmp/run$1$2" \
             2>&1 | tail -1
     done | tee "$out/runs.txt"
 fi

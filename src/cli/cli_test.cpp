@@ -226,15 +226,16 @@ TEST_F(Cli, RunWritesVtuFramesThatParse) {
         expectPlausibleDensities(p);
     }
 
-    // Frame 0 is the seeded lattice at rest; interior particles read the rest density exactly
-    // (the mass is calibrated for it).
+    // Frame 0 is the seeded lattice at rest, hydrostatic under the default model (delta-SPH):
+    // the deepest layer, d/2 above the floor of the 0.12 m column, reads rho0 (1 + g depth / c^2)
+    // with c^2 = 100 x 2 g H, i.e. rho0 (1 + (0.115 / 0.12) / 200).
     const HostParticles& first = frames[0];
     double densest = 0;
     for (std::size_t i = 0; i < first.size(); ++i) {
         ASSERT_EQ(speedOf(first, i), 0.0) << i;
         densest = std::max(densest, double(first.rho[i]));
     }
-    EXPECT_NEAR(densest, kRestDensity, 1e-3 * kRestDensity);
+    EXPECT_NEAR(densest, kRestDensity * (1 + 0.115 / 0.12 / 200), 1e-4 * kRestDensity);
 
     // By frame 3 (0.1 s) the column is collapsing: it moved, fell, and no faster than a splash.
     const HostParticles& last = frames[3];
@@ -378,11 +379,20 @@ TEST_F(Cli, ExplainPrintsTheDerivation) {
         weir("run tiny.json" + std::string(kCpu) + " --frames 0 --explain --out explained");
     ASSERT_EQ(explained.exitCode, 0) << explained.output;
     for (const char* line :
-         {"spacing d = 0.01 m (scene)", "smoothing radius h = 0.02 m (2 d)",
-          "particle mass m = ", "expected top speed",
-          "stiffness k = ", "viscosity mu = ", "time step ", "per frame at the expected speed; CFL",
-          "0.4 h / (c + max|v|)", "blow-up bound", "960 particles, grid 10 x 10 x 5 cells"}) {
+         {"fluid model delta-sph", "fluid model delta-SPH: ", "spacing d = 0.01 m (scene)",
+          "smoothing radius h = 0.02 m (2 d)", "particle mass m = ", "expected top speed",
+          "stiffness k = ", "viscosity: the fluid's own mu = ", "time step ",
+          "per frame at the expected speed; CFL", "0.25 h / (c + max|v|)", "blow-up bound",
+          "960 particles, grid 10 x 10 x 5 cells"}) {
         EXPECT_TRUE(contains(explained.output, line));
+    }
+    // The paper's model, one option away, derives its own.
+    RunResult paper = weir("run tiny.json" + std::string(kCpu) +
+                           " --model paper --frames 0 --explain --out paper");
+    ASSERT_EQ(paper.exitCode, 0) << paper.output;
+    for (const char* line : {"fluid model paper", "fluid model: the paper's", "viscosity mu = ",
+                             "0.4 h / (c + max|v|)", "960 particles, grid 10 x 10 x 5 cells"}) {
+        EXPECT_TRUE(contains(paper.output, line));
     }
     // --frames 0 writes the initial frame only.
     EXPECT_TRUE(fs::exists(path("explained/" + frameName(0, "vtu"))));

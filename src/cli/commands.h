@@ -32,6 +32,7 @@ int reportCaughtError(Communicator& comm);
 
 struct RunOptions {
     std::string scene;  // file path or built-in name; empty: the built-in dam break
+    std::string model;  // fluid.model to run the scene with; "" the scene's own
     std::string backend = "auto";
     std::string neighbours = "auto";
     std::optional<std::int64_t> particles;
@@ -47,6 +48,7 @@ struct RunOptions {
 
 struct BenchOptions {
     std::string scene;              // file or built-in name; empty: dam break
+    std::string model = "paper";    // fluid.model timed: the paper's, whatever the scene says
     std::string sizes = "10k,50k";  // particle counts, k/M suffixes allowed
     std::string columns = "auto";   // cpu-brute,cpu-grid,...,cuda-dense or auto
     int steps = 20;                 // timed steps (median per stage)

@@ -212,12 +212,14 @@ TEST_F(Cli, FramesJsonRecordsTheScene) {
 // --- what a run reports -------------------------------------------------------------------
 
 // A ball of water that overlaps a block: seeded on their own lattices, the two meet closer than
-// the spacing, so the initial state is compressed.
+// the spacing, so the initial state is compressed. The paper's model: its density is summed from
+// positions, so frame 0 shows it (delta-SPH's starts hydrostatic, from the seeding).
 constexpr const char* kTouchingScene = R"({
     "name": "touching",
     "container": {"min": [0, 0, 0], "max": [0.3, 0.2, 0.08]},
     "blocks": [{"min": [0, 0, 0], "max": [0.12, 0.12, 0.08]}],
     "spheres": [{"center": [0.15, 0.04, 0.04], "radius": 0.035}],
+    "fluid": {"model": "paper"},
     "particles": {"spacing": 0.01},
     "time": {"duration": 1, "frameRate": 30}
 })";

@@ -70,6 +70,10 @@ int infoCommand(bool renderingBuilt) {
     std::cout << "grid cell ids: 32-bit (" << kCellBitsPerAxis << " bits per axis) up to "
               << kMaxCellsPerAxis << " cells per axis, 64-bit ("
               << CellIdLayout<WideCellKey>::bitsPerAxis << " bits per axis) past that\n";
+    std::cout << "fluid model: delta-sph by default (Wendland C2, continuity density with "
+                 "density diffusion, the fluid's own viscosity, particle shifting, boundary "
+                 "particles); \"fluid\": {\"model\": \"paper\"} for Müller et al. 2003 as the "
+                 "paper has it (weir bench times it)\n";
     std::cout << "built-in scenes:";
     for (const std::string& name : builtinSceneNames()) {
         std::cout << " " << name;

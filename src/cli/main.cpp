@@ -124,6 +124,12 @@ int weirMain(int argc, char** argv) {
         "across R ranks, one GPU each; see docs/cluster.md)");
     runCmd->add_option("scene", run.scene,
                        "Scene JSON file or built-in scene (" + scenes + "); default dam_break");
+    runCmd
+        ->add_option("--model", run.model,
+                     "Run the scene with this fluid.model: delta-sph (the default: Wendland "
+                     "kernel, density diffusion, the fluid's own viscosity) or paper (Müller et "
+                     "al. 2003 as the paper has it); default: the scene's")
+        ->check(CLI::IsMember({"paper", "delta-sph"}));
     runCmd->add_option("--backend", run.backend, "auto (GPU if present), cuda or cpu")
         ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
         ->capture_default_str();
@@ -167,6 +173,12 @@ int weirMain(int argc, char** argv) {
     CLI::App* benchCmd = app.add_subcommand(
         "bench", "Time every stage of the step: the paper's Tables 1-3 on this machine");
     benchCmd->add_option("scene", bench.scene, "Scene file or built-in scene; default dam_break");
+    benchCmd
+        ->add_option("--model", bench.model,
+                     "fluid.model timed, whatever the scene says: paper (the paper's system, "
+                     "as in its Tables 1-3) or delta-sph (weir's default model)")
+        ->check(CLI::IsMember({"paper", "delta-sph"}))
+        ->capture_default_str();
     benchCmd->add_option("--sizes", bench.sizes, "Particle counts, e.g. 10k,50k,100k,1M,1e9")
         ->capture_default_str();
     benchCmd
@@ -321,7 +333,7 @@ int weirMain(int argc, char** argv) {
     validateCmd
         ->add_option("--model", validate.model,
                      "fluid.model of every case: paper or delta-sph (default: the scenes' own "
-                     "default)")
+                     "default, delta-sph)")
         ->check(CLI::IsMember({"paper", "delta-sph"}));
     validateCmd
         ->add_option("--cases", validate.cases,

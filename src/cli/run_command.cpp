@@ -97,6 +97,9 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
     std::ostream& log = root ? std::cerr : nullStream();
     try {
         Scene scene = resolveScene(options.scene);
+        if (!options.model.empty()) {
+            scene = withFluidModel(scene, options.model);
+        }
         SetupOptions setupOptions;
         setupOptions.particleCount = options.particles;
         // Distributed: each rank seeds only its slab, on its backend (no rank holds them all).
@@ -115,7 +118,8 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         const std::int64_t frames =
             options.frames ? std::min(*options.frames, report.frames) : report.frames;
 
-        log << "weir: scene " << scene.name << " (" << scene.sourcePath << ")\n";
+        log << "weir: scene " << scene.name << " (" << scene.sourcePath << "), fluid model "
+            << (scene.model == FluidModelName::DeltaSph ? "delta-sph" : "paper") << "\n";
         if (root) {
             prepareRunFolder(outDir, options.overwrite, log);
         }

@@ -90,22 +90,24 @@ int scalingBenchCommand(const BenchOptions& options) {
     const bool root = world->rank() == 0;
     try {
         const int ranks = world->size();
-        Scene scene = resolveScene(options.scene);
+        const Scene scene = withFluidModel(resolveScene(options.scene), options.model);
         const Backend backend = cudaDeviceAvailable() ? Backend::Cuda : Backend::Cpu;
         const NeighbourMode mode = NeighbourMode::Auto;
         nlohmann::json record;
         record["tool"] = "weir bench --scaling";
         record["commit"] = WEIR_COMMIT;
         record["scene"] = scene.name;
+        record["model"] = options.model;
         record["ranks"] = ranks;
         record["backend"] = backendName(backend);
         record["device"] = describeBackend(backend);
         record["steps"] = options.steps;
         record["runs"] = nlohmann::json::array();
         if (root) {
-            std::cerr << "weir bench --scaling: " << scene.name << ", " << ranks << " ranks on "
-                      << backendName(backend) << " (" << describeBackend(backend) << "), "
-                      << options.steps << " steps per block, median of 5 blocks\n";
+            std::cerr << "weir bench --scaling: " << scene.name << ", fluid model " << options.model
+                      << ", " << ranks << " ranks on " << backendName(backend) << " ("
+                      << describeBackend(backend) << "), " << options.steps
+                      << " steps per block, median of 5 blocks\n";
         }
         for (const std::string& text : splitList(options.sizes)) {
             const std::int64_t n =

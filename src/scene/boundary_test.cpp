@@ -225,13 +225,14 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 // An obstacle sticking far out of the container (1000 m up) is sampled only where the fluid can
 // feel it: the set-up takes well under 2 s (it took minutes), and no boundary particle lies past
-// 2 h and the wall layers outside the container.
+// 2 h and the wall layers outside the container (the paper's model: one layer at h = 2d).
 TEST(Boundary, ObstaclesAreClippedToTheContainer) {
     const auto start = std::chrono::steady_clock::now();
     Scene scene = parseScene(R"({
         "container": {"min": [0, 0, 0], "max": [1, 0.5, 0.5]},
         "blocks": [{"min": [0, 0, 0], "max": [0.4, 0.3, 0.5]}],
         "obstacles": {"boxes": [{"min": [0.7, 0, 0.1], "max": [0.9, 1000, 0.4]}]},
+        "fluid": {"model": "paper"},
         "particles": {"spacing": 0.01},
         "walls": {"model": "particles"}
     })",

@@ -586,7 +586,7 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
         top.object("fluid", {"preset", "restDensity", "viscosity", "stiffness", "eos",
                              "pressureForce", "clampNegativePressure", "negativePressureScale",
                              "model", "artificialViscosity", "densityDiffusion"});
-    const std::string model = fluid.string("model", "paper");
+    const std::string model = fluid.string("model", "delta-sph");
     if (model == "paper") {
         scene.model = FluidModelName::Paper;
     } else if (model == "delta-sph") {
@@ -803,6 +803,12 @@ Scene loadScene(const std::string& path) {
         fail("read", errno);  // e.g. a directory: EISDIR
     }
     return parseScene(text, path);
+}
+
+Scene withFluidModel(const Scene& scene, const std::string& model) {
+    Json root = Json::parse(scene.json);
+    root["fluid"]["model"] = model;
+    return parseSceneNamed(root.dump(), scene.sourcePath, scene.name);
 }
 
 Scene builtinScene(const std::string& name) {

@@ -97,7 +97,7 @@ struct Scene {
 
     // "fluid": {...}
     std::string preset;  // "preset": "water" | "oil" | "honey" ("" none: water-like)
-    FluidModelName model = FluidModelName::Paper;  // "model"
+    FluidModelName model = FluidModelName::Paper;  // "model" (parsed default: "delta-sph")
     std::optional<double> artificialViscosity;     // "artificialViscosity": alpha (delta-sph)
     std::optional<double> densityDiffusion;        // "densityDiffusion": delta (delta-sph)
     bool eosGiven = false;                         // "eos" was written (else the model's)
@@ -156,6 +156,10 @@ Scene parseScene(const std::string& jsonText, const std::string& sourceName);
 // throws SceneError listing them, with a did-you-mean.
 Scene builtinScene(const std::string& name);
 std::vector<std::string> builtinSceneNames();
+// The same scene read again with fluid.model set to `model` ("paper" or "delta-sph"), so that
+// every default that follows the model (equation of state, walls, pressure clamp) follows it
+// too; throws SceneError as parseScene does (e.g. delta-sph fields asked of the paper's model).
+Scene withFluidModel(const Scene& scene, const std::string& model);
 // " (did you mean 'dam_break'?)" for a name close to a built-in scene's ("dambreak"), else "".
 std::string didYouMeanBuiltinScene(const std::string& name);
 

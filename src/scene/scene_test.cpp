@@ -148,7 +148,13 @@ TEST(Scene, ShippedDamBreak) {
     expectVec(s.gravity, 0, -9.81, 0);
     EXPECT_DOUBLE_EQ(s.duration, 2.0);
     EXPECT_DOUBLE_EQ(s.frameRate, 30);
-    EXPECT_DOUBLE_EQ(s.restDensity, 1000);
+    // Water, under the default model (delta-SPH: its walls are boundary particles).
+    EXPECT_EQ(s.preset, "water");
+    EXPECT_DOUBLE_EQ(s.restDensity, 998);
+    EXPECT_DOUBLE_EQ(s.physicalViscosity, 1e-3);
+    EXPECT_EQ(s.model, FluidModelName::DeltaSph);
+    EXPECT_EQ(s.walls, WallModel::Particles);
+    EXPECT_EQ(s.eos, EquationOfState::Tait);
     EXPECT_FALSE(s.viscosity);
     EXPECT_FALSE(s.stiffness);
     EXPECT_FALSE(s.timeStep);
@@ -166,7 +172,7 @@ TEST(Scene, ShippedDoubleDamBreak) {
     expectVec(s.blocks[1].box.max, 1.6, 0.6, 0.6);
     EXPECT_EQ(s.particleCount, 30000);
     EXPECT_DOUBLE_EQ(s.duration, 2.5);
-    EXPECT_DOUBLE_EQ(s.restDensity, 1000);
+    EXPECT_DOUBLE_EQ(s.restDensity, 998);
     EXPECT_FALSE(s.viscosity);
     EXPECT_FALSE(s.stiffness);
     EXPECT_FALSE(s.timeStep);
@@ -185,7 +191,52 @@ TEST(Scene, ShippedDropIntoPool) {
     expectVec(s.spheres[0].velocity, 0, -1, 0);
     EXPECT_EQ(s.particleCount, 40000);
     EXPECT_DOUBLE_EQ(s.duration, 2.0);
-    EXPECT_DOUBLE_EQ(s.restDensity, 1000);
+    EXPECT_DOUBLE_EQ(s.restDensity, 998);
+}
+
+// Every shipped scene names its fluid (so delta-SPH, the default, gets its own viscosity) and
+// runs the default model; the paper's is one setting away, with the paper's defaults.
+TEST(Scene, ShippedScenesNameTheirFluidAndRunTheDefaultModel) {
+    for (const std::string& name : builtinSceneNames()) {
+        const Scene s = builtinScene(name);
+        EXPECT_FALSE(s.preset.empty()) << name;
+        EXPECT_EQ(s.model, FluidModelName::DeltaSph) << name;
+        const Scene paper = withFluidModel(s, "paper");
+        EXPECT_EQ(paper.model, FluidModelName::Paper) << name;
+        EXPECT_EQ(paper.name, s.name);
+        EXPECT_EQ(paper.sourcePath, s.sourcePath);
+        EXPECT_EQ(paper.particleCount, s.particleCount) << name;
+        EXPECT_EQ(paper.eos, EquationOfState::Linear) << name;  // the paper's eq. 3
+        EXPECT_TRUE(paper.clampNegativePressure) << name;
+        // Simple walls, unless the scene asks for boundary particles (viscous_pour does).
+        EXPECT_EQ(paper.walls, s.json.find("\"walls\"") == std::string::npos ? WallModel::Simple
+                                                                             : WallModel::Particles)
+            << name;
+        EXPECT_EQ(withFluidModel(paper, "delta-sph").json, withFluidModel(s, "delta-sph").json);
+    }
+}
+
+TEST(Scene, ModelDefaultsToDeltaSphAndPaperIsOneSettingAway) {
+    const std::string base = R"({"container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.5, 0.5, 0.5]}])";
+    const Scene delta = parseScene(base + "}", "d.json");
+    EXPECT_EQ(delta.model, FluidModelName::DeltaSph);
+    EXPECT_EQ(delta.walls, WallModel::Particles);
+    EXPECT_EQ(delta.eos, EquationOfState::Tait);
+    EXPECT_FALSE(delta.clampNegativePressure);
+    const Scene paper = parseScene(base + R"(, "fluid": {"model": "paper"}})", "p.json");
+    EXPECT_EQ(paper.model, FluidModelName::Paper);
+    EXPECT_EQ(paper.walls, WallModel::Simple);
+    EXPECT_EQ(paper.eos, EquationOfState::Linear);
+    EXPECT_TRUE(paper.clampNegativePressure);
+    // A delta-SPH field asked of the paper's model is refused, naming the field.
+    const Scene shifted = parseScene(base + R"(, "fluid": {"densityDiffusion": 0.1}})", "s.json");
+    try {
+        withFluidModel(shifted, "paper");
+        FAIL() << "no SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_TRUE(contains(e.what(), "fluid.densityDiffusion")) << e.what();
+    }
 }
 
 TEST(Scene, BuiltinNamesListEveryShippedScene) {

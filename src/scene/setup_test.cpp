@@ -392,7 +392,7 @@ TEST(Setup, MassComesFromTheLatticeKernelSum) {
         Scene scene = parseScene(R"({
             "container": {"min": [0, 0, 0], "max": [0.3, 0.3, 0.3]},
             "blocks": [{"min": [0, 0, 0], "max": [0.12, 0.12, 0.12]}],
-            "fluid": {"restDensity": 998},
+            "fluid": {"restDensity": 998, "model": "paper"},
             "particles": {"spacing": 0.01, "smoothingRatio": )" +
                                      std::to_string(ratio) + R"(}
         })",
@@ -436,10 +436,12 @@ TEST(Setup, LatticeKernelSumApproachesOne) {
 // --- stiffness, viscosity, time step ------------------------------------------------------
 
 TEST(Setup, DerivedStiffnessIsTenTimesTheFreeFallSpeedSquared) {
-    // Floor at y = -0.2, fluid top at 0.6: H = 0.8; the block also moves at 1.5 m/s.
+    // Floor at y = -0.2, fluid top at 0.6: H = 0.8; the block also moves at 1.5 m/s. The paper's
+    // model (its derived artificial viscosity is checked).
     Scene scene = parseScene(R"({
         "container": {"min": [0, -0.2, 0], "max": [1, 1, 0.3]},
         "blocks": [{"min": [0, -0.2, 0], "max": [0.2, 0.6, 0.3], "velocity": [0, 0, -1.5]}],
+        "fluid": {"model": "paper"},
         "particles": {"spacing": 0.02}
     })",
                              "<test stiffness>");
@@ -477,7 +479,7 @@ TEST(Setup, ExplicitStiffnessViscosityAndTimeStepAreUsed) {
     Scene scene = parseScene(R"({
         "container": {"min": [0, 0, 0], "max": [0.6, 0.8, 0.3]},
         "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.6, 0.3]}],
-        "fluid": {"stiffness": 500, "viscosity": 0.25},
+        "fluid": {"stiffness": 500, "viscosity": 0.25, "model": "paper"},
         "particles": {"spacing": 0.01},
         "time": {"frameRate": 30, "timeStep": 1e-4}
     })",
@@ -534,12 +536,14 @@ TEST(Setup, UnsafeExplicitSettingsAreWarnedAbout) {
     EXPECT_TRUE(report.warnings.empty());
 }
 
+// The paper's model: its CFL number 0.4 and its eq. 5 viscosity (delta-SPH: 0.25 and (h/2)^2).
 TEST(Setup, TimeStepLandsOnFramesAndRespectsTheLimits) {
     for (double frameRate : {24.0, 30.0, 60.0, 7.0}) {
         for (const char* spacing : {"0.01", "0.04"}) {
             Scene scene = parseScene(std::string(R"({
                 "container": {"min": [0, 0, 0], "max": [0.8, 0.6, 0.2]},
                 "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.5, 0.2]}],
+                "fluid": {"model": "paper"},
                 "particles": {"spacing": )") +
                                          spacing + R"(},
                 "time": {"duration": 1, "frameRate": )" +

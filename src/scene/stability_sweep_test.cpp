@@ -1,8 +1,10 @@
-// Stability sweep (issue 6): every shipped scene, at small resolutions and several smoothing
+// Stability sweep (issues 6 and 14): every shipped scene, under both fluid models (delta-SPH,
+// the default, and the paper's) and both wall models, at small resolutions and several smoothing
 // ratios, with parameters derived by weir, runs to its end with no NaN, no escape, no runaway
 // speed and a bounded density deviation. A scene that the derived parameters cannot make stable
 // is a bug. (CPU sizes for CI; the same loop runs 100k to 1M particles on a GPU with
-// WEIR_SWEEP_SIZES, e.g. "100000,1000000", and WEIR_SWEEP_BACKEND=cuda.)
+// WEIR_SWEEP_SIZES, e.g. "100000,1000000", and WEIR_SWEEP_BACKEND=cuda; WEIR_SWEEP_MODELS, e.g.
+// "delta-sph", runs one model only.)
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -38,17 +40,16 @@ constexpr double kTailDeviation = 0.15;
 constexpr double kMaxDeviation = 0.30;
 constexpr double kMeanDeviation = 0.01;
 
-using SweepCase = std::tuple<std::string, std::int64_t, double, bool>;  // scene, n, ratio, walls
+// scene, fluid model, n, ratio, boundary particles (else the simple walls)
+using SweepCase = std::tuple<std::string, std::string, std::int64_t, double, bool>;
 
 class StabilitySweep : public ::testing::TestWithParam<SweepCase> {};
 
 TEST_P(StabilitySweep, RunsToTheEndStable) {
-    const auto& [name, count, ratio, boundaryParticles] = GetParam();
-    Scene scene = builtinScene(name);
+    const auto& [name, model, count, ratio, boundaryParticles] = GetParam();
+    Scene scene = withFluidModel(builtinScene(name), model);
     scene.smoothingRatio = ratio;
-    if (boundaryParticles) {
-        scene.walls = WallModel::Particles;
-    }
+    scene.walls = boundaryParticles ? WallModel::Particles : WallModel::Simple;
     SetupOptions options;
     options.particleCount = count;
     const char* backendName = std::getenv("WEIR_SWEEP_BACKEND");
@@ -71,10 +72,11 @@ TEST_P(StabilitySweep, RunsToTheEndStable) {
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cout << "sweep " << name << " n=" << sim->particleCount() << " h/d=" << ratio
-              << (boundaryParticles ? " walls=particles" : " walls=simple") << ": "
-              << sim->stepCount() << " steps to t=" << sim->time() << " s, worst " << worst.text()
-              << ", 99.9th percentile +" << 100 * worst.p999 << "%, " << seconds << " s\n";
+    std::cout << "sweep " << name << " " << model << " n=" << sim->particleCount()
+              << " h/d=" << ratio << (boundaryParticles ? " walls=particles" : " walls=simple")
+              << ": " << sim->stepCount() << " steps to t=" << sim->time() << " s, worst "
+              << worst.text() << ", 99.9th percentile +" << 100 * worst.p999 << "%, " << seconds
+              << " s\n";
     EXPECT_EQ(sim->time(), double(report.frames) * report.frameInterval);
     EXPECT_LE(worst.p999, kTailDeviation);
     EXPECT_LE(worst.max, kMaxDeviation);
@@ -82,33 +84,49 @@ TEST_P(StabilitySweep, RunsToTheEndStable) {
 }
 
 std::string caseName(const ::testing::TestParamInfo<SweepCase>& info) {
-    const auto& [name, count, ratio, walls] = info.param;
+    const auto& [name, model, count, ratio, walls] = info.param;
     std::ostringstream s;
-    s << name << "_" << count << "_h" << int(ratio * 10) << (walls ? "_walls" : "");
+    s << name << (model == "paper" ? "_paper" : "_delta") << "_" << count << "_h" << int(ratio * 10)
+      << (walls ? "_walls" : "_simple");
     return s.str();
 }
 
-// CI: 600 particles at three ratios and 1200 at h = 2d, both wall models. WEIR_SWEEP_SIZES
-// (e.g. "100000,1000000") runs every size at every ratio instead.
+// Every item of a comma-separated list.
+std::vector<std::string> listItems(const char* text) {
+    std::vector<std::string> items;
+    std::istringstream list(text);
+    for (std::string item; std::getline(list, item, ',');) {
+        if (!item.empty()) {
+            items.push_back(item);
+        }
+    }
+    return items;
+}
+
+// CI: 600 particles at three ratios and 1200 at h = 2d, both fluid models, both wall models.
+// WEIR_SWEEP_SIZES (e.g. "100000,1000000") runs every size at every ratio instead;
+// WEIR_SWEEP_MODELS (e.g. "delta-sph") only the models listed.
 std::vector<SweepCase> sweepCases() {
     std::vector<SweepCase> cases;
     const char* sizes = std::getenv("WEIR_SWEEP_SIZES");
-    for (const std::string& name : builtinSceneNames()) {
-        for (bool walls : {false, true}) {
-            if (sizes != nullptr) {
-                std::istringstream list(sizes);
-                std::string size;
-                while (std::getline(list, size, ',')) {
-                    for (double ratio : {1.5, 2.0, 3.0}) {
-                        cases.emplace_back(name, std::stoll(size), ratio, walls);
+    const char* models = std::getenv("WEIR_SWEEP_MODELS");
+    for (const std::string& model :
+         models != nullptr ? listItems(models) : std::vector<std::string>{"delta-sph", "paper"}) {
+        for (const std::string& name : builtinSceneNames()) {
+            for (bool walls : {false, true}) {
+                if (sizes != nullptr) {
+                    for (const std::string& size : listItems(sizes)) {
+                        for (double ratio : {1.5, 2.0, 3.0}) {
+                            cases.emplace_back(name, model, std::stoll(size), ratio, walls);
+                        }
                     }
+                    continue;
                 }
-                continue;
+                for (double ratio : {1.5, 2.0, 3.0}) {
+                    cases.emplace_back(name, model, 600, ratio, walls);
+                }
+                cases.emplace_back(name, model, 1200, 2.0, walls);
             }
-            for (double ratio : {1.5, 2.0, 3.0}) {
-                cases.emplace_back(name, 600, ratio, walls);
-            }
-            cases.emplace_back(name, 1200, 2.0, walls);
         }
     }
     return cases;

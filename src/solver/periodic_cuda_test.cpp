@@ -23,7 +23,7 @@ Scene slidingChannel(const std::string& model) {
         "blocks": [{"min": [0, 0, 0], "max": [0.16, 0.06, 0.08], "velocity": [0.5, 0, 0.2]},
                    {"min": [0, 0.06, 0], "max": [0.08, 0.1, 0.08], "velocity": [-0.3, 0, 0]}],
         "fluid": {"preset": "water", "restDensity": 1000)" +
-                          (model.empty() ? std::string() : R"(, "model": ")" + model + "\"") +
+                          std::string(R"(, "model": ")") + model + "\"" +
                           R"(},
         "particles": {"spacing": 0.01},
         "walls": {"model": "particles"}
@@ -37,7 +37,7 @@ struct Case {
 };
 
 void PrintTo(const Case& c, std::ostream* os) {
-    *os << (c.model.empty() ? "paper" : c.model) << ", " << neighbourModeName(c.mode);
+    *os << c.model << ", " << neighbourModeName(c.mode);
 }
 
 class CudaPeriodic : public ::testing::TestWithParam<Case> {};
@@ -78,13 +78,14 @@ TEST_P(CudaPeriodic, AgreesWithCpu) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, CudaPeriodic,
-                         ::testing::Values(Case{"", NeighbourMode::Dense},
-                                           Case{"", NeighbourMode::Grid},
+                         ::testing::Values(Case{"paper", NeighbourMode::Dense},
+                                           Case{"paper", NeighbourMode::Grid},
                                            Case{"delta-sph", NeighbourMode::Dense},
                                            Case{"delta-sph", NeighbourMode::Grid},
                                            Case{"delta-sph", NeighbourMode::Brute}),
                          [](const auto& info) {
-                             return std::string(info.param.model.empty() ? "Paper" : "DeltaSph") +
+                             return std::string(info.param.model == "paper" ? "Paper"
+                                                                            : "DeltaSph") +
                                     neighbourModeName(info.param.mode);
                          });
 

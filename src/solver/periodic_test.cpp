@@ -130,7 +130,7 @@ Scene restingChannel(const std::string& model) {
                       "periodic": [true, false, true]},
         "blocks": [{"min": [0, 0, 0], "max": [0.16, 0.1, 0.08]}],
         "fluid": {"preset": "water", "restDensity": 1000)" +
-                          (model.empty() ? std::string() : R"(, "model": ")" + model + "\"") +
+                          std::string(R"(, "model": ")") + model + "\"" +
                           R"(},
         "particles": {"spacing": 0.01},
         "walls": {"model": "particles"}
@@ -189,10 +189,10 @@ TEST_P(PeriodicModels, ChannelAtRestStaysAtRest) {
     EXPECT_LT(std::sqrt(seam / seamCount), 1.3 * std::sqrt(inside / insideCount));
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, PeriodicModels, ::testing::Values("", "delta-sph"),
+INSTANTIATE_TEST_SUITE_P(Models, PeriodicModels, ::testing::Values("paper", "delta-sph"),
                          [](const auto& info) {
-                             return info.param.empty() ? std::string("Paper")
-                                                       : std::string("DeltaSph");
+                             return info.param == "paper" ? std::string("Paper")
+                                                          : std::string("DeltaSph");
                          });
 
 // A box of fluid periodic along all three axes, without gravity, every particle moving.
@@ -207,7 +207,7 @@ Scene periodicBox(const std::string& velocityBelow, const std::string& velocityA
                           velocityAbove + R"(}],
         "gravity": [0, 0, 0],
         "fluid": {"preset": "water", "restDensity": 1000)" +
-                          (model.empty() ? std::string() : R"(, "model": ")" + model + "\"") +
+                          std::string(R"(, "model": ")") + model + "\"" +
                           R"(},
         "particles": {"spacing": 0.01}
     })",

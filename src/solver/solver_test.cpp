@@ -134,10 +134,12 @@ class RestState : public ::testing::TestWithParam<WallModel> {};
 TEST_P(RestState, FluidAtRestInABoxStaysAtRest) {
     // A tank filled to 0.15 m: after the first pressure waves settle the fluid sits still,
     // near rest density, where it started; with the paper's simple walls and with boundary
-    // particles.
+    // particles. The paper's model (delta-SPH's tank at rest is `weir validate`'s hydrostatic
+    // case, src/validate/).
     Scene scene = parseScene(R"({
         "container": {"min": [0, 0, 0], "max": [0.2, 0.3, 0.2]},
         "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.15, 0.2]}],
+        "fluid": {"model": "paper"},
         "particles": {"count": 3000},
         "time": {"duration": 1.0, "frameRate": 30}
     })",
