@@ -344,10 +344,17 @@ int weirMain(int argc, char** argv) {
                      "2-D vortex at Re 100)")
         ->capture_default_str();
     validateCmd
-        ->add_option("--taylor-green-resolution", validate.taylorGreenResolution,
-                     "Particles across the Taylor-Green vortex's periodic box")
+        ->add_option("--taylor-green-resolution", validate.taylorGreenResolutions,
+                     "Particles across the Taylor-Green vortex's periodic box; several (e.g. "
+                     "32,64,128) run a resolution ladder, the finest held to the tolerance")
+        ->delimiter(',')
         ->transform(countOption(8, 400))
         ->capture_default_str();
+    validateCmd
+        ->add_option("--shifting", validate.shifting,
+                     "fluid.shifting of every case (delta-sph): particle shifting's coefficient "
+                     "as a multiple of its default, 0 turns it off (default: the scenes' own)")
+        ->check(CLI::Range(0.0, 10.0));
     validateCmd
         ->add_option("--lobovsky-resolution", validate.lobovskyResolution,
                      "Particles over the height of the Lobovsky et al. column (H = 0.3 m)")

@@ -21,7 +21,10 @@ int validateCommand(const ValidateOptions& options) {
         o.damEndT = options.damEndT;
         o.channelResolution = options.channelResolution;
         o.lobovskyResolution = options.lobovskyResolution;
-        o.taylorGreenResolution = options.taylorGreenResolution;
+        o.taylorGreenResolutions = options.taylorGreenResolutions;
+        if (options.shifting >= 0) {
+            o.shifting = options.shifting;
+        }
         o.hydrostatic = o.damBreak = o.viscous = false;
         std::stringstream cases(options.cases);
         for (std::string c; std::getline(cases, c, ',');) {

@@ -32,6 +32,21 @@ struct Team {
 #endif
         return v;
     }
+
+    // The largest v over the team's lanes, on every lane. Every lane of the team must call it.
+    WEIR_HD Real max(Real v) const {
+#if defined(__CUDA_ARCH__)
+        if constexpr (Size > 1) {
+            const unsigned lane = threadIdx.x & 31u;
+            const unsigned mask = ((1u << Size) - 1u) << (lane & ~unsigned(Size - 1));
+            for (int offset = Size / 2; offset > 0; offset /= 2) {
+                const Real other = __shfl_xor_sync(mask, v, offset);
+                v = other > v ? other : v;
+            }
+        }
+#endif
+        return v;
+    }
 };
 
 }  // namespace weir

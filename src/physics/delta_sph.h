@@ -134,6 +134,86 @@ WEIR_HD inline Real boundaryDensityRate(const SphParams& p, const Vec3& rVec, Re
     return psi * p.wendland.gradientFactor(r) * dot(vi - vWall, rVec);
 }
 
+// ---- Particle shifting (SphParams::shifting > 0) ----
+//
+// Particles in a shear flow line up along its streamlines and, where the flow stretches them
+// (the stagnation points of a vortex), tear apart: the pressure gradient of a disordered lattice
+// is wrong, the lattice does not heal, and the flow loses its energy to noise (measured: the
+// Taylor-Green vortex followed the analytic decay until particles had moved half a spacing,
+// then collapsed). Each step every particle is moved a little down the gradient of the particle
+// concentration C = sum_j V_j W_ij, towards where particles are sparse (Lind et al. 2012), by
+// the delta-plus-SPH form of Sun et al. 2017:
+//   delta x_i = -A dt sum_j V_j (1 + R (W_ij / W(d))^4) grad W_ij,   A = 2 r_s c / 10
+// (r_s the support radius; their CFL Ma (2h)^2 with Ma = 0.1, CFL = c dt / h), R = 0.2: the
+// tensile term pushes apart pairs closer than the spacing d. The shift moves matter, not
+// momentum: velocities and densities are carried unchanged. Where that would move fluid that
+// should not move, it is restricted (each rule measured necessary on a tank at rest or on the
+// vortex, docs/physics.md):
+// - Only where the fluid deforms. A fluid at rest or in rigid motion needs no regularising, and
+//   a tank at rest shifted at full strength never settled (its particles kept drifting through
+//   the pressure field, 0.04-0.07 sqrt(2 g H) of stray speed). The shift is scaled by the largest
+//   speed of a neighbour relative to the particle over SphParams::shiftingGateSpeed (a tenth of
+//   the flow's speed scale c / 10), up to 1: full where the flow is sheared or stretched across
+//   the kernel, nothing at rest; unlike a particle's own speed (Skillen et al. 2013), the same
+//   in every frame of reference.
+// - At a free surface C is truncated and its gradient would push particles out of the fluid (a
+//   tank blew up). The kernel sum of every particle is taken in the force pass; a particle whose
+//   own sum is under SphParams::surfaceKernelSum, or that has a neighbour under
+//   SphParams::surfaceNeighbourKernelSum (a surface particle: the layer under the surface is
+//   truncated too), moves along the surface only: the part of its shift along its fluid kernel
+//   gradient sum_j V_j grad W_ij (the surface normal) is dropped. The neighbour threshold is the
+//   lower one: a small void in a stretched bulk (sums 0.9-0.95) must not switch off the shift
+//   that heals it (the vortex blew up when it did).
+// - Spray (a particle's own kernel sum under SphParams::splashKernelSum: a drop, a sheet one or
+//   two particles thick) has no surface to slide along and is not shifted (Sun et al. 2017 do
+//   the same; a dam break's run-up jet blew up when it was).
+// - Next to walls (a boundary particle or a simple wall's plane within the support) particles
+//   are not shifted: neither the walls' particles nor the planes stand for the fluid beyond them
+//   exactly enough, at edges and corners least (a tank churned). The collision response keeps a
+//   shifted particle out of obstacles and in the container.
+// The shift is held to SphParams::shiftingLimit a step.
+
+// V_j W_ij of a neighbour at distance^2 r2 < h^2 with volume vj: its share of the kernel sum.
+WEIR_HD inline Real kernelSumTerm(const SphParams& p, Real r2, Real vj) {
+    return vj * p.wendland.value(r2 * reciprocalSqrt(r2 > Real(0) ? r2 : p.wendland.h2));
+}
+
+// Fluid neighbour j of fluid particle i (0 < r2 < h^2), volume vj = m / rho_j, kernel sum of j
+// sumJ: adds to the concentration gradient (with the tensile term) and to the surface normal
+// (without it), and notes a surface particle among the neighbours.
+WEIR_HD inline void addShiftingNeighbour(const SphParams& p, const Vec3& rVec, Real r2, Real vj,
+                                         Real sumJ, Vec3& gradient, Vec3& normal, bool& atSurface) {
+    const Real r = r2 * reciprocalSqrt(r2);
+    const Real ratio = p.wendland.value(r) * p.shiftingInvW, ratio2 = ratio * ratio;
+    const Vec3 grad = rVec * (vj * p.wendland.gradientFactor(r));
+    gradient += grad * (Real(1) + Real(0.2) * ratio2 * ratio2);
+    normal += grad;
+    atSurface = atSurface || sumJ < p.surfaceNeighbourKernelSum;
+}
+
+// Particle i's shift this step from its concentration gradient; relative2: the largest
+// |v_i - v_j|^2 over its neighbours (the gate); at a surface the part along surfaceNormal is
+// dropped; held to the limit.
+WEIR_HD inline Vec3 shiftingDisplacement(const SphParams& p, const Vec3& gradient,
+                                         const Vec3& surfaceNormal, bool atSurface, Real relative2,
+                                         Real dt) {
+    Real gate = Real(1);
+    if (relative2 < p.shiftingGateSpeed * p.shiftingGateSpeed) {
+        gate = relative2 > Real(0) ? relative2 * reciprocalSqrt(relative2) / p.shiftingGateSpeed
+                                   : Real(0);
+    }
+    Vec3 shift = gradient * (-p.shifting * dt * gate);
+    const Real n2 = lengthSquared(surfaceNormal);
+    if (atSurface && n2 > Real(0)) {
+        shift -= surfaceNormal * (dot(shift, surfaceNormal) / n2);
+    }
+    const Real s2 = lengthSquared(shift), limit2 = p.shiftingLimit * p.shiftingLimit;
+    if (s2 > limit2) {
+        shift *= p.shiftingLimit * reciprocalSqrt(s2);
+    }
+    return shift;
+}
+
 // Calls f(b, rVec, r2) for the boundary particles within h of x.
 template <class F>
 WEIR_HD inline void forEachBoundaryNeighbour(const BoundaryView& bv, const SphParams& p,

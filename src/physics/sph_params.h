@@ -71,7 +71,18 @@ struct SphParams {
     Vec3 hydrostaticGradient;      // rho0 g / c^2, kg/m^4: the hydrostatic part that density
                                    // diffusion leaves alone (Fourtakas et al. 2019)
     bool noSlip = false;           // walls: no-slip (true) or free slip
-    Real maxDensityRatio = 0;      // blow-up bound on rho / rho0 (0: none)
+    // Particle shifting (physics/delta_sph.h): A of delta x = -A dt sum V_j (1 + R ..) grad W,
+    // m^2/s (0: off); 1 / W(d) of its tensile term; the most it moves a particle in a step, m;
+    // the relative speed across the kernel from which it acts in full, m/s; the kernel sums
+    // under which a particle, or a neighbour, is at a free surface (it shifts along it only).
+    Real shifting = 0;
+    Real shiftingInvW = 0;
+    Real shiftingLimit = 0;
+    Real shiftingGateSpeed = 0;
+    Real surfaceKernelSum = 0;
+    Real surfaceNeighbourKernelSum = 0;
+    Real splashKernelSum = 0;  // under it (a drop, a thin sheet) a particle is not shifted
+    Real maxDensityRatio = 0;  // blow-up bound on rho / rho0 (0: none)
 };
 
 // Whether axis a (0, 1, 2 for x, y, z) is periodic.

@@ -585,7 +585,7 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     FieldReader fluid =
         top.object("fluid", {"preset", "restDensity", "viscosity", "stiffness", "eos",
                              "pressureForce", "clampNegativePressure", "negativePressureScale",
-                             "model", "artificialViscosity", "densityDiffusion"});
+                             "model", "artificialViscosity", "densityDiffusion", "shifting"});
     const std::string model = fluid.string("model", "delta-sph");
     if (model == "paper") {
         scene.model = FluidModelName::Paper;
@@ -599,11 +599,15 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     const bool delta = scene.model == FluidModelName::DeltaSph;
     scene.artificialViscosity = fluid.optionalNumber("artificialViscosity", between(0, 1));
     scene.densityDiffusion = fluid.optionalNumber("densityDiffusion", between(0, 1));
-    if (!delta && (scene.artificialViscosity || scene.densityDiffusion)) {
-        fluid.fail(
-            fluid.pathOf(scene.artificialViscosity ? "artificialViscosity" : "densityDiffusion"),
-            fluid.written(scene.artificialViscosity ? "artificialViscosity" : "densityDiffusion"),
-            "given only with \"model\": \"delta-sph\" (the paper's model has neither)");
+    scene.shifting = fluid.optionalNumber("shifting", between(0, 10));
+    if (!delta) {
+        for (const char* field : {"artificialViscosity", "densityDiffusion", "shifting"}) {
+            if (fluid.find(field)) {
+                fluid.fail(fluid.pathOf(field), fluid.written(field),
+                           "given only with \"model\": \"delta-sph\" (the paper's model has "
+                           "none of artificialViscosity, densityDiffusion, shifting)");
+            }
+        }
     }
     scene.preset = fluid.string("preset", "");
     if (!scene.preset.empty()) {

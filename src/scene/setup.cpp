@@ -26,6 +26,18 @@ constexpr std::int64_t kDefaultParticleCount = 20000;
 constexpr double kDefaultArtificialViscosity = 0.01;
 constexpr double kDefaultDensityDiffusion = 0.1;
 constexpr double kDeltaSphCfl = 0.25;
+// Particle shifting (physics/delta_sph.h): the largest shift a step, in spacings (a guard, not
+// a paper's value: the shift of a healthy flow is a few thousandths of d a step); the relative
+// speed across the kernel from which it acts in full, as a share of the flow's speed scale
+// c / 10; and the kernel sums under which a particle (own) or a neighbour is at a free surface
+// (the seeded lattice reads 1; at h = 2d its surface layer reads 0.89, and disorder and
+// compression move the interior by about 2%).
+constexpr double kShiftingLimit = 0.1;
+constexpr double kShiftingGate = 0.1;
+constexpr double kSurfaceKernelSum = 0.95;
+constexpr double kSurfaceNeighbourKernelSum = 0.9;
+constexpr double kSplashKernelSum =
+    0.75;  // under it: a drop or a sheet, with no surface to slide along
 
 // Steps per output frame at most: beyond, a time step is too small to run (and an int).
 constexpr double kMaxStepsPerFrame = 1e9;
@@ -338,6 +350,21 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         say("kernel gradient divided by its lattice moment " + fmt(report.gradientMoment) +
             ", so that on the seeded lattice a linear pressure, a linear flow and a quadratic flow "
             "are differentiated exactly");
+        const double shifting = scene.shifting.value_or(1.0);
+        if (shifting > 0) {
+            say("particle shifting (Sun et al. 2017's delta-plus-SPH form" +
+                std::string(shifting != 1 ? ", " + fmt(shifting) + " x its coefficient" : "") +
+                "): each step particles move down the gradient of their concentration by A dt "
+                "grad C, A = 2 h c / 10 = " +
+                fmt(shifting * 2 * h * c / 10) + " m^2/s, at most " + fmt(kShiftingLimit) +
+                " d a step, in full where neighbours' velocities differ by " +
+                fmt(kShiftingGate * c / 10) +
+                " m/s or more (none at rest), along the surface "
+                "only at a free surface, none next to walls; keeps the particles from lining up "
+                "and tearing apart where the flow stretches them");
+        } else {
+            say("particle shifting off (fluid.shifting 0)");
+        }
         say("density by the continuity equation, starting hydrostatic in each fluid block "
             "(rho = rho0 + rho0 |g| depth / c^2), rho0 in spheres");
     } else if (scene.viscosity) {
@@ -474,6 +501,16 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         p.hydrostaticGradient = Vec3(weight * (scene.restDensity / (c * c)));
         p.noSlip = scene.noSlip;
         p.cflNumber = Real(cfl);
+        const double shifting = scene.shifting.value_or(1.0);
+        if (shifting > 0) {
+            p.shifting = Real(shifting * 2 * h * c / 10);
+            p.shiftingInvW = Real(1.0 / double(p.wendland.value(Real(d))));
+            p.shiftingLimit = Real(kShiftingLimit * d);
+            p.shiftingGateSpeed = Real(kShiftingGate * c / 10);
+            p.surfaceKernelSum = Real(kSurfaceKernelSum);  // the lattice reads 1 (mass calibration)
+            p.surfaceNeighbourKernelSum = Real(kSurfaceNeighbourKernelSum);
+            p.splashKernelSum = Real(kSplashKernelSum);
+        }
     }
 
     for (const auto& [what, value] : std::initializer_list<std::pair<const char*, double>>{

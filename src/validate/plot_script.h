@@ -8,7 +8,7 @@ namespace weir {
 inline constexpr const char* kValidationPlotScript = R"PY(#!/usr/bin/env python3
 """Plots weir validate results: hydrostatic pressure profile and Martin & Moyce surge front.
 
-Usage: python3 plot.py DIR   (reads DIR/*.csv, writes DIR/hydrostatic.png, dam_break.png, viscous_dam_break.png, channels.png, lobovsky.png)
+Usage: python3 plot.py DIR   (reads DIR/*.csv, writes DIR/hydrostatic.png, dam_break.png, viscous_dam_break.png, channels.png, lobovsky.png, taylor_green.png)
 """
 import csv
 import os
@@ -127,6 +127,24 @@ def main(d):
         axes[1].legend(fontsize=8)
         fig.tight_layout()
         fig.savefig(os.path.join(d, "lobovsky.png"), dpi=120)
+
+    tg = rows(os.path.join(d, "taylor_green.csv"))
+    if tg:
+        fig, ax = plt.subplots(figsize=(6, 4.5))
+        runs = sorted({int(r["resolution"]) for r in tg})
+        for k, n in enumerate(runs):
+            sel = [r for r in tg if int(r["resolution"]) == n]
+            ax.semilogy([float(r["t"]) for r in sel], [float(r["energy"]) for r in sel],
+                        "C%do-" % (k + 1), ms=3, label="weir, %d across" % n)
+        sel = [r for r in tg if int(r["resolution"]) == runs[-1]]
+        ax.semilogy([float(r["t"]) for r in sel], [float(r["energy_analytic"]) for r in sel],
+                    "k--", label="analytic exp(-16 pi^2 t / Re)")
+        ax.set_xlabel("t U / L")
+        ax.set_ylabel("kinetic energy per particle / U^2")
+        ax.set_title("Taylor-Green vortex, Re = 100")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(os.path.join(d, "taylor_green.png"), dpi=120)
 
 
 if __name__ == "__main__":

@@ -110,7 +110,7 @@ class Wcsph final : public PressureSolver<Exec> {
     }
 
     std::size_t bytesHeld() const override {
-        return (pressureTerm_.size() + density_.size()) * sizeof(Real) +
+        return (pressureTerm_.size() + density_.size() + kernelSum_.size()) * sizeof(Real) +
                (acc_.size() + wallState_.size()) * sizeof(Real4);
     }
 
@@ -188,8 +188,10 @@ class Wcsph final : public PressureSolver<Exec> {
         FaultRecord* fault = s.fault;
         StepClock* clock = s.clock;
         Real4 *newPos = s.store.nextPos(), *newVel = s.store.nextVel();
+        Real* kernelSum = shiftingSums(s);
         s.exec.template forEachTeam<TeamSize>(pv.count, [=] WEIR_HD(Index i, Team<TeamSize> team) {
-            deltaForceAt(i, pv, nb, params, obstacles, fault, clock, newPos, newVel, team);
+            deltaForceAt(i, pv, nb, params, obstacles, fault, clock, newPos, newVel, kernelSum,
+                         team);
         });
     }
 
@@ -200,10 +202,14 @@ class Wcsph final : public PressureSolver<Exec> {
         const SphParams params = s.params;
         const Real* density = density_.data();
         Real4* moved = s.store.nextVel();
+        Real4* movedPos = s.store.nextPos();
+        const Real* kernelSum = shiftingSums(s);
+        const ObstacleView obstacles = s.obstacles;
         FaultRecord* fault = s.fault;
         const StepClock* clock = s.clock;
         s.exec.forEach(pv.count, [=] WEIR_HD(Index i) {
-            deltaDensityAt(i, pv, nb, params, density, moved, fault, clock);
+            deltaDensityAt(i, pv, nb, params, density, moved, movedPos, kernelSum, obstacles, fault,
+                           clock);
         });
         s.exec.stageEnd("density");
     }
@@ -293,12 +299,20 @@ class Wcsph final : public PressureSolver<Exec> {
         return std::is_same_v<std::decay_t<Neighbours>, DenseGridNeighbours>;
     }
 
+    // Particle shifting's kernel sums (force pass to density pass), or null when it is off.
+    Real* shiftingSums(Context& s) {
+        return s.params.shifting > Real(0) ? kernelSum_.data() : nullptr;
+    }
+
     // Sizes the method's arrays to the particle count (no allocation unless it grew).
     void fit(Context& s) {
         pressureTerm_.resize(std::size_t(s.store.count()));
         if (s.params.model == FluidModel::DeltaSph) {
             density_.resize(std::size_t(s.store.count()));
             wallState_.resize(std::size_t(s.boundary.count));
+            if (s.params.shifting > Real(0)) {
+                kernelSum_.resize(std::size_t(s.store.count()));
+            }
         }
         if (s.search.mode() != NeighbourMode::Dense && s.params.model == FluidModel::Paper) {
             acc_.resize(std::size_t(s.store.count()));  // the dense path fuses force and motion
@@ -330,6 +344,7 @@ class Wcsph final : public PressureSolver<Exec> {
     Buffer<Real> pressureTerm_;  // the density stage's pressureTermOf, for the force stage
     Buffer<Real> density_;       // delta-SPH: each particle's density at the step's start
     Buffer<Real4> wallState_;    // delta-SPH: each boundary particle's velocity and p / rho^2
+    Buffer<Real> kernelSum_;     // delta-SPH with shifting: each particle's kernel sum
     Buffer<Real4> acc_;          // the paper's stages: force stage to displacement stage
     int teamOverride_ = teamOverride();
 };

@@ -180,6 +180,34 @@ WEIR_HD inline Real wallWeightDensityRate(const SphParams& p, const Vec3& x, con
     return rate;
 }
 
+// ... their share of the kernel sum at x (the fluid they stand for; particle shifting's surface
+// test) ...
+WEIR_HD inline Real wallWeightShare(const SphParams& p, const Vec3& x) {
+    Real share = 0;
+    for (int a = 0; a < 3; ++a) {
+        if (isPeriodic(p, a)) {
+            continue;
+        }
+        for (int side = 0; side < 2; ++side) {
+            Real s, push;
+            wallSample(p.wallWeight, side == 0 ? x[a] - p.boxMin[a] : p.boxMax[a] - x[a], s, push);
+            share += s;
+        }
+    }
+    return share;
+}
+
+// ... and, for particle shifting, whether a plane is within the support of x.
+WEIR_HD inline bool nearWallWeight(const SphParams& p, const Vec3& x) {
+    for (int a = 0; a < 3; ++a) {
+        if (!isPeriodic(p, a) &&
+            (x[a] - p.boxMin[a] < p.wendland.h || p.boxMax[a] - x[a] < p.wendland.h)) {
+            return true;
+        }
+    }
+    return false;
+}
+
 // Before the first pass, each boundary particle b: the pressure and velocity the fluid near it
 // extrapolates to it (physics/delta_sph.h); walls far from the fluid keep the wall's velocity and
 // no pressure.
@@ -197,11 +225,13 @@ WEIR_HD inline void deltaWallAt(Index b, const ParticleView& pv, const Neighbour
 // newPos, newVel get that place and velocity (the density is still the old one). Ghosts (of a
 // distributed run) are moved too, without records: the owned particles' second pass reads their
 // new velocities.
+// With particle shifting on, kernelSum[i] gets i's kernel sum sum_j V_j W_ij over fluid and walls
+// (itself included), for the second pass's free-surface test.
 template <class Neighbours, int TeamSize = 1>
 WEIR_HD inline void deltaForceAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                  const SphParams& params, const ObstacleView& obstacles,
                                  FaultRecord* fault, StepClock* clock, Real4* newPos, Real4* newVel,
-                                 Team<TeamSize> team = {}) {
+                                 Real* kernelSum, Team<TeamSize> team = {}) {
     const Real4 v4 = pv.vel[i];
     if (clock->dt == Real(0)) {  // a no-op step: carried over
         if (team.leader()) {
@@ -212,7 +242,9 @@ WEIR_HD inline void deltaForceAt(Index i, const ParticleView& pv, const Neighbou
     }
     const Vec3 xi = pv.position(i), vi = v4.xyz();
     const Real rhoi = v4.w, termI = pv.pressureTerm[i], h2 = params.wendland.h2;
+    const bool shifts = kernelSum != nullptr;
     Vec3 acc;
+    Real sum = 0;
     bool collapsed = false;
     nb.forEachCandidate(
         i,
@@ -223,6 +255,9 @@ WEIR_HD inline void deltaForceAt(Index i, const ParticleView& pv, const Neighbou
                 const Real4 vj = pv.vel[j];
                 addFluidMomentum(params, rVec, r2, rhoi, vj.w, termI, pv.pressureTerm[j], vi,
                                  vj.xyz(), acc);
+                if (shifts) {
+                    sum += kernelSumTerm(params, r2, params.mass * reciprocal(vj.w));
+                }
             } else if (r2 == Real(0) && j != i) {
                 collapsed = true;
             }
@@ -230,6 +265,9 @@ WEIR_HD inline void deltaForceAt(Index i, const ParticleView& pv, const Neighbou
         team);
     acc = Vec3(team.sum(acc.x), team.sum(acc.y), team.sum(acc.z));
     collapsed = team.sum(collapsed ? Real(1) : Real(0)) > Real(0);
+    if (shifts) {
+        sum = team.sum(sum);
+    }
     if (!team.leader()) {
         return;
     }
@@ -238,9 +276,18 @@ WEIR_HD inline void deltaForceAt(Index i, const ParticleView& pv, const Neighbou
         const BoundaryView& bv = pv.boundary;
         forEachBoundaryNeighbour(bv, params, xi, [&](Index b, const Vec3& rVec, Real r2) {
             addBoundaryMomentum(params, rVec, r2, rhoi, termI, vi, bv.pos[b].w, bv.state[b], acc);
+            if (shifts) {
+                sum += kernelSumTerm(params, r2, bv.pos[b].w * params.invRestDensity);
+            }
         });
     } else {
         acc += wallWeightAcceleration(params, xi, rhoi, pi);
+        if (shifts) {
+            sum += wallWeightShare(params, xi);
+        }
+    }
+    if (shifts) {
+        kernelSum[i] = sum + params.mass * reciprocal(rhoi) * params.wendland.value(Real(0));
     }
     const Vec3 a = acc + params.gravity;
     Vec3 x = xi, v = vi;
@@ -259,30 +306,53 @@ WEIR_HD inline void deltaForceAt(Index i, const ParticleView& pv, const Neighbou
 
 // Second pass: i's density rate from the new velocities (`moved`: the first pass's newVel) at the
 // old positions, continuity and density diffusion with the old densities (`density`), written
-// into the new velocity's w.
+// into the new velocity's w; with particle shifting on (kernelSum: the first pass's), i's shift
+// from the same neighbours is added to its new position (`movedPos`: the first pass's newPos),
+// and the collision response keeps it out of obstacles and walls.
 template <class Neighbours, int TeamSize = 1>
 WEIR_HD inline void deltaDensityAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                    const SphParams& params, const Real* density, Real4* moved,
-                                   FaultRecord* fault, const StepClock* clock,
-                                   Team<TeamSize> team = {}) {
+                                   Real4* movedPos, const Real* kernelSum,
+                                   const ObstacleView& obstacles, FaultRecord* fault,
+                                   const StepClock* clock, Team<TeamSize> team = {}) {
     if (clock->dt == Real(0) || isGhost(pv.pos[i])) {
         return;  // carried over; a ghost's density is its owner's
     }
     const Vec3 xi = pv.position(i);
     const Vec3 vi = moved[i].xyz();
     const Real rhoi = density[i], h2 = params.wendland.h2;
+    const bool shifts = kernelSum != nullptr;
     Real rate = 0;
+    bool atSurface = shifts && kernelSum[i] < params.surfaceKernelSum;
+    Vec3 gradient, surfaceNormal;
+    Real relative2 = 0;  // the largest |v_i - v_j|^2 over the neighbours
+    bool nearWall = false;
     nb.forEachCandidate(
         i,
         [&](Index j) {
             const Vec3 rVec = xi - pv.position(j);
             const Real r2 = lengthSquared(rVec);
             if (r2 < h2 && r2 > Real(0)) {
-                rate += fluidDensityRate(params, rVec, r2, rhoi, density[j], vi, moved[j].xyz());
+                const Real rhoj = density[j];
+                const Vec3 vj = moved[j].xyz();
+                rate += fluidDensityRate(params, rVec, r2, rhoi, rhoj, vi, vj);
+                const Real rel2 = lengthSquared(vi - vj);
+                relative2 = rel2 > relative2 ? rel2 : relative2;
+                if (shifts) {
+                    addShiftingNeighbour(params, rVec, r2, params.mass * reciprocal(rhoj),
+                                         kernelSum[j], gradient, surfaceNormal, atSurface);
+                }
             }
         },
         team);
     rate = team.sum(rate);
+    if (shifts) {
+        gradient = Vec3(team.sum(gradient.x), team.sum(gradient.y), team.sum(gradient.z));
+        surfaceNormal =
+            Vec3(team.sum(surfaceNormal.x), team.sum(surfaceNormal.y), team.sum(surfaceNormal.z));
+        atSurface = team.sum(atSurface ? Real(1) : Real(0)) > Real(0);
+        relative2 = team.max(relative2);
+    }
     if (!team.leader()) {
         return;
     }
@@ -291,13 +361,22 @@ WEIR_HD inline void deltaDensityAt(Index i, const ParticleView& pv, const Neighb
         forEachBoundaryNeighbour(bv, params, xi, [&](Index b, const Vec3& rVec, Real r2) {
             const Vec3 vb = bv.velocity != nullptr ? bv.velocity[b].xyz() : Vec3();
             rate += boundaryDensityRate(params, rVec, r2, vi, bv.pos[b].w, vb);
+            nearWall = true;
         });
     } else {
         rate += wallWeightDensityRate(params, xi, vi);
+        nearWall = nearWallWeight(params, xi);
     }
     const Real rho = rhoi + clock->dt * rate;
     checkDensity(rho, false, i, params, fault, clock);
     moved[i].w = rho;
+    if (shifts && !nearWall && kernelSum[i] >= params.splashKernelSum) {
+        const Vec3 shift =
+            shiftingDisplacement(params, gradient, surfaceNormal, atSurface, relative2, clock->dt);
+        Vec3 x = movedPos[i].xyz() + shift, v = vi;  // the velocity is not changed by the shift
+        collide(x, v, params, obstacles);
+        movedPos[i] = Real4::from(x, movedPos[i].w);
+    }
 }
 
 }  // namespace weir
