@@ -414,8 +414,16 @@ TEST_F(Cli, QuietHidesTheProgressLines) {
     EXPECT_TRUE(contains(quiet.output, "done, 3 frames"));
 }
 
+// Particle shifting switches at thresholds (free surface, walls, spray: physics/delta_sph.h), so
+// summation-order rounding can flip one particle's shift and the runs part by more than rounding:
+// these comparisons of the neighbour searches alone run without it.
+std::string withoutShifting(std::string scene) {
+    const std::size_t brace = scene.rfind('}');
+    return scene.insert(brace, R"(, "fluid": {"shifting": 0})");
+}
+
 TEST_F(Cli, EveryNeighbourSearchGivesTheSameFluid) {
-    writeFile("tiny.json", kTinyScene);
+    writeFile("tiny.json", withoutShifting(kTinyScene));
     std::vector<HostParticles> states;
     for (const std::string mode : {"brute", "grid", "dense"}) {
         SCOPED_TRACE(mode);
@@ -445,11 +453,11 @@ TEST_F(Cli, EveryNeighbourSearchGivesTheSameFluid) {
 TEST_F(Cli, LongContainerRunsOnTheGridWithWideCellIds) {
     // 1025 cells of h = 1 cm along x: past the paper's 10-bit cell ids, where the grid used to
     // refuse; it now switches to 64-bit ids and says so.
-    writeFile("long.json", R"({
+    writeFile("long.json", withoutShifting(R"({
         "container": {"min": [0, 0, 0], "max": [10.25, 0.1, 0.1]},
         "blocks": [{"min": [0, 0, 0], "max": [0.04, 0.04, 0.04]}],
         "particles": {"spacing": 0.005}
-    })");
+    })"));
     RunResult paper = weir("run long.json" + std::string(kCpu) + " --frames 1 --neighbours grid" +
                            " --out paper");
     ASSERT_EQ(paper.exitCode, 0) << paper.output;

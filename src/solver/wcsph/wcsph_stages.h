@@ -374,6 +374,7 @@ WEIR_HD inline void deltaDensityAt(Index i, const ParticleView& pv, const Neighb
         const Vec3 shift =
             shiftingDisplacement(params, gradient, surfaceNormal, atSurface, relative2, clock->dt);
         Vec3 x = movedPos[i].xyz() + shift, v = vi;  // the velocity is not changed by the shift
+        wrapPeriodic(x, params);  // in the box, or its ghosts would land among the fluid
         collide(x, v, params, obstacles);
         movedPos[i] = Real4::from(x, movedPos[i].w);
     }
