@@ -353,7 +353,8 @@ int weirMain(int argc, char** argv) {
     validateCmd
         ->add_option("--shifting", validate.shifting,
                      "fluid.shifting of every case (delta-sph): particle shifting's coefficient "
-                     "as a multiple of its default, 0 turns it off (default: the scenes' own)")
+                     "as a multiple of Sun et al.'s, 0 off (default: off, but 1 in the "
+                     "Taylor-Green case)")
         ->check(CLI::Range(0.0, 10.0));
     validateCmd
         ->add_option("--lobovsky-resolution", validate.lobovskyResolution,

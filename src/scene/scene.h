@@ -100,8 +100,8 @@ struct Scene {
     FluidModelName model = FluidModelName::Paper;  // "model" (parsed default: "delta-sph")
     std::optional<double> artificialViscosity;     // "artificialViscosity": alpha (delta-sph)
     std::optional<double> densityDiffusion;        // "densityDiffusion": delta (delta-sph)
-    std::optional<double> shifting;                // "shifting": particle shifting's A / its
-                                                   // default (delta-sph; 0 turns it off)
+    std::optional<double> shifting;                // "shifting": particle shifting's A / Sun et
+                                                   // al.'s (delta-sph; unset or 0: off)
     bool eosGiven = false;                         // "eos" was written (else the model's)
     double restDensity = 1000.0;  // "restDensity", kg/m^3, > 0 (default: the preset's)
     std::optional<double>

@@ -350,7 +350,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         say("kernel gradient divided by its lattice moment " + fmt(report.gradientMoment) +
             ", so that on the seeded lattice a linear pressure, a linear flow and a quadratic flow "
             "are differentiated exactly");
-        const double shifting = scene.shifting.value_or(1.0);
+        const double shifting = scene.shifting.value_or(0.0);
         if (shifting > 0) {
             say("particle shifting (Sun et al. 2017's delta-plus-SPH form" +
                 std::string(shifting != 1 ? ", " + fmt(shifting) + " x its coefficient" : "") +
@@ -363,7 +363,9 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
                 "only at a free surface, none next to walls; keeps the particles from lining up "
                 "and tearing apart where the flow stretches them");
         } else {
-            say("particle shifting off (fluid.shifting 0)");
+            say("particle shifting off (fluid.shifting 1 turns it on: it keeps a sheared or "
+                "stretched flow's particles from tearing apart, as in the Taylor-Green vortex, "
+                "but is not yet safe in violent flows, docs/physics.md)");
         }
         say("density by the continuity equation, starting hydrostatic in each fluid block "
             "(rho = rho0 + rho0 |g| depth / c^2), rho0 in spheres");
@@ -501,7 +503,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         p.hydrostaticGradient = Vec3(weight * (scene.restDensity / (c * c)));
         p.noSlip = scene.noSlip;
         p.cflNumber = Real(cfl);
-        const double shifting = scene.shifting.value_or(1.0);
+        const double shifting = scene.shifting.value_or(0.0);
         if (shifting > 0) {
             p.shifting = Real(shifting * 2 * h * c / 10);
             p.shiftingInvW = Real(1.0 / double(p.wendland.value(Real(d))));
