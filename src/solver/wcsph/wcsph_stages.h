@@ -336,9 +336,9 @@ WEIR_HD inline void deltaDensityAt(Index i, const ParticleView& pv, const Neighb
                 const Real rhoj = density[j];
                 const Vec3 vj = moved[j].xyz();
                 rate += fluidDensityRate(params, rVec, r2, rhoi, rhoj, vi, vj);
-                const Real rel2 = lengthSquared(vi - vj);
-                relative2 = rel2 > relative2 ? rel2 : relative2;
                 if (shifts) {
+                    const Real rel2 = lengthSquared(vi - vj);
+                    relative2 = rel2 > relative2 ? rel2 : relative2;
                     addShiftingNeighbour(params, rVec, r2, params.mass * reciprocal(rhoj),
                                          kernelSum[j], gradient, surfaceNormal, atSurface);
                 }
