@@ -318,11 +318,26 @@ FrontRun runDamBreak(const ValidationOptions& o, int resolution, const std::stri
     return run;
 }
 
-void runLadder(const ValidationOptions& o, ValidationReport& r) {
-    std::vector<int> rungs = o.columnResolutions;
+// A ladder's resolutions, coarse to fine, each once.
+std::vector<int> sortedRungs(std::vector<int> rungs) {
     std::sort(rungs.begin(), rungs.end());
     rungs.erase(std::unique(rungs.begin(), rungs.end()), rungs.end());
-    for (int resolution : rungs) {
+    return rungs;
+}
+
+// One check per step up a ladder: a finer rung's error may exceed the coarser's by at most
+// kLadderGrowthTolerance. what: the check's name up to "grows from".
+void addLadderChecks(ValidationReport& r, const std::string& what,
+                     const std::vector<int>& resolutions, const std::vector<double>& errors) {
+    for (std::size_t k = 1; k < resolutions.size(); ++k) {
+        r.checks.push_back({what + " grows from " + std::to_string(resolutions[k - 1]) + " to " +
+                                std::to_string(resolutions[k]) + " across by",
+                            errors[k] - errors[k - 1], kLadderGrowthTolerance, ""});
+    }
+}
+
+void runLadder(const ValidationOptions& o, ValidationReport& r) {
+    for (int resolution : sortedRungs(o.columnResolutions)) {
         r.ladder.push_back(runDamBreak(o, resolution, "water"));
     }
     const FrontRun& finest = r.ladder.back();
@@ -332,13 +347,13 @@ void runLadder(const ValidationOptions& o, ValidationReport& r) {
                         finest.rmsRelative, kFrontRmsRelativeTolerance, ""});
     r.checks.push_back({"dam break: front max relative error vs Martin & Moyce" + at,
                         finest.maxRelative, kFrontMaxRelativeTolerance, ""});
-    for (std::size_t k = 1; k < r.ladder.size(); ++k) {
-        r.checks.push_back({"dam break ladder: RMS relative error grows from " +
-                                std::to_string(r.ladder[k - 1].resolution) + " to " +
-                                std::to_string(r.ladder[k].resolution) + " across by",
-                            r.ladder[k].rmsRelative - r.ladder[k - 1].rmsRelative,
-                            kLadderGrowthTolerance, ""});
+    std::vector<int> resolutions;
+    std::vector<double> errors;
+    for (const FrontRun& run : r.ladder) {
+        resolutions.push_back(run.resolution);
+        errors.push_back(run.rmsRelative);
     }
+    addLadderChecks(r, "dam break ladder: RMS relative error", resolutions, errors);
     double worst = 0;
     for (const FrontRun& run : r.ladder) {
         worst = std::max(worst, run.maxDensityDeviation);
@@ -657,10 +672,7 @@ TaylorGreenRun runTaylorGreenAt(const ValidationOptions& options, int n, double 
 void runTaylorGreen(const ValidationOptions& o, ValidationReport& r) {
     const double nu = 0.01, L = 1;
     r.tgvDecayReference = -8 * kPiD * kPiD * nu / (L * L);
-    std::vector<int> rungs = o.taylorGreenResolutions;
-    std::sort(rungs.begin(), rungs.end());
-    rungs.erase(std::unique(rungs.begin(), rungs.end()), rungs.end());
-    for (int n : rungs) {
+    for (int n : sortedRungs(o.taylorGreenResolutions)) {
         r.taylorGreen.push_back(runTaylorGreenAt(o, n, r.tgvDecayReference));
     }
     const TaylorGreenRun& finest = r.taylorGreen.back();
@@ -668,13 +680,13 @@ void runTaylorGreen(const ValidationOptions& o, ValidationReport& r) {
                             std::to_string(finest.resolution) + " across, shifting " +
                             num(o.shifting.value_or(1.0)) + ")",
                         finest.error, kTaylorGreenDecayTolerance, ""});
-    for (std::size_t k = 1; k < r.taylorGreen.size(); ++k) {
-        r.checks.push_back({"Taylor-Green ladder: decay-rate error grows from " +
-                                std::to_string(r.taylorGreen[k - 1].resolution) + " to " +
-                                std::to_string(r.taylorGreen[k].resolution) + " across by",
-                            r.taylorGreen[k].error - r.taylorGreen[k - 1].error,
-                            kLadderGrowthTolerance, ""});
+    std::vector<int> resolutions;
+    std::vector<double> errors;
+    for (const TaylorGreenRun& run : r.taylorGreen) {
+        resolutions.push_back(run.resolution);
+        errors.push_back(run.error);
     }
+    addLadderChecks(r, "Taylor-Green ladder: decay-rate error", resolutions, errors);
 }
 
 std::string modelName(const std::string& model) {
