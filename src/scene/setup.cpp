@@ -223,10 +223,10 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     const bool deltaModel = scene.model == FluidModelName::DeltaSph;
     if (deltaModel && scene.walls == WallModel::Simple) {
         report.warnings.push_back(
-            "walls.model \"simple\" with the delta-SPH model is not yet stable (measured: "
-            "blow-ups at 100k particles with smoothingRatio 1.5 on a GPU, compression past 20% "
-            "at 600 particles): use walls.model \"particles\" (delta-SPH's default) or fluid.model "
-            "\"paper\"");
+            "walls.model \"simple\" with the delta-SPH model is not yet proven stable at scale "
+            "(measured: blow-ups at 100k particles with smoothingRatio 1.5 on a GPU, before the "
+            "walls' push became the gradient of their density share; not re-measured since): use "
+            "walls.model \"particles\" (delta-SPH's default) or fluid.model \"paper\"");
     }
     const double h = scene.smoothingRatio * d;
     report.smoothingRadius = h;
@@ -636,13 +636,15 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
                             ? "; friction mu = " + fmt(scene.wallFriction * viscosity)
                             : "; free slip (walls.friction 0)")));
     } else {
-        p.wallWeight = wallWeightTable(h, d, mass, scene.restDensity);
+        p.wallWeight =
+            wallWeightTable(h, d, mass, scene.restDensity, c, deltaModel ? &p.wendland : nullptr);
         say("walls: the paper's simple collision response (restitution " +
             fmt(scene.wallRestitution) + ", friction " + fmt(scene.wallFriction) +
             "), and wall weight (Harada et al. 2007): each container plane stands for the fluid "
             "lattice beyond it, adds its density (" +
             fmt(double(p.wallWeight.share[0])) +
-            " rho0 at the plane) and pushes by the particle's own pressure; obstacles get the "
+            " rho0 at the plane) and pushes by the particle's own pressure times that density's "
+            "gradient, with a barrier of c^2 / d within d/2 of the plane; obstacles get the "
             "collision response only");
     }
     say(std::to_string(setup.particleCount()) + " particles, grid " +

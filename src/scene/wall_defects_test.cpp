@@ -122,15 +122,13 @@ TEST_P(BoxOnTheFloor, HoldsTheFluidBack) {
     EXPECT_EQ(worst, 0u) << "particles inside the box standing on the floor";
 }
 
+// delta-SPH with simple walls failed this while particle shifting was on by default (it moved
+// particles after the collision response, up to 1.8 mm into the box: 23 particles at 0.6 s).
 INSTANTIATE_TEST_SUITE_P(Models, BoxOnTheFloor,
                          ::testing::Values(Models{"paper", "simple"}, Models{"paper", "particles"},
-                                           Models{"delta-sph", "particles"}),
+                                           Models{"delta-sph", "particles"},
+                                           Models{"delta-sph", "simple"}),
                          modelsName);
-// delta-SPH with simple walls fails these (issue 14, open): particle shifting moves particles
-// after the collision response, up to 1.8 mm into the box (23 particles at 0.6 s), and a tank
-// at rest boils (mean speed 0.27-0.35 m/s).
-INSTANTIATE_TEST_SUITE_P(DISABLED_DeltaSphSimpleWalls, BoxOnTheFloor,
-                         ::testing::Values(Models{"delta-sph", "simple"}), modelsName);
 
 class TankAtRest : public ::testing::TestWithParam<Models> {};
 
@@ -187,12 +185,16 @@ TEST_P(TankAtRest, Settles) {
     EXPECT_LT(comLate, u / 100) << "the column bounces";
 }
 
-// Both fail today (issue 14, open). The paper model: the wall weight's spiky push is not the
-// gradient of the density share it adds (1.47x at the plane, 0.90x at d/2, 0.58x at d), so the
-// wall does net work and the column rings at c / 4H (mean speed 0.04-0.06 m/s to 2 s); pushing
-// by -rho0 d share / ds settles it (0.0046 m/s at 1.5-2 s) but lets 72 of 3072 particles onto
-// the planes in RestState (limit 30). delta-SPH: see BoxOnTheFloor.
-INSTANTIATE_TEST_SUITE_P(DISABLED_SimpleWalls, TankAtRest,
+// The simple walls failed this until their push became the gradient of the density share they
+// add (physics/wall_weight.h). With the spiky gradient's lattice sum (1.47x the share's gradient at
+// the plane, 0.90x at d/2, 0.58x at d) the walls did net work and the column rang at c / 4H:
+// paper model 0.042 m/s mean speed at 0.5-1 s and 0.041 m/s at 1.5-2 s, the column bouncing at
+// 0.057 m/s; delta-SPH 0.043 and 0.031 m/s. The share's gradient alone settled the paper model
+// (0.0044 m/s at 1.5-2 s) but let 72 of 3072 particles onto the planes in RestState, and
+// delta-SPH still churned (0.033 m/s). With the barrier within d/2 of the planes as well
+// (measured on the CPU): paper 0.010 and 0.0039 m/s, column 0.00016 m/s; delta-SPH 0.0079 and
+// 0.0042 m/s, column 0.00021 m/s (U = 1.72 m/s, bound U / 100 = 0.017 m/s).
+INSTANTIATE_TEST_SUITE_P(SimpleWalls, TankAtRest,
                          ::testing::Values(Models{"paper", "simple"},
                                            Models{"delta-sph", "simple"}),
                          modelsName);
@@ -264,12 +266,13 @@ TEST_P(SeedsClearOfBoundaries, StartAtRest) {
     EXPECT_LT(fastest, bound);
 }
 
+// delta-SPH with simple walls: fastest 0.67 m/s against the bound 0.56 m/s with the spiky push,
+// 0.555 m/s with the share's gradient and the barrier (physics/wall_weight.h).
 INSTANTIATE_TEST_SUITE_P(Models, SeedsClearOfBoundaries,
                          ::testing::Values(Models{"paper", "simple"}, Models{"paper", "particles"},
-                                           Models{"delta-sph", "particles"}),
+                                           Models{"delta-sph", "particles"},
+                                           Models{"delta-sph", "simple"}),
                          modelsName);
-INSTANTIATE_TEST_SUITE_P(DISABLED_DeltaSphSimpleWalls, SeedsClearOfBoundaries,
-                         ::testing::Values(Models{"delta-sph", "simple"}), modelsName);
 
 }  // namespace
 }  // namespace weir

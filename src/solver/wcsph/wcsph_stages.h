@@ -151,33 +151,15 @@ WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, co
 // waves) grow any wave by sqrt(1 + (omega dt)^2) a step: the fluid then holds together only at a
 // time step a third as large, and only thanks to its dissipation.
 
-// Walls of the simple model: the container planes push by the particle's own pressure
-// (physics/wall_weight.h).
+// Walls of the simple model: the container planes push by the particle's own pressure times
+// the gradient of their density share (physics/wall_weight.h) ...
 WEIR_HD inline Vec3 wallWeightAcceleration(const SphParams& p, const Vec3& x, Real rhoi, Real pi) {
     return wallAcceleration(p.wallWeight, p.boxMin, p.boxMax, x, rhoi, pi, p.periodicAxes);
 }
-// ... and their share of the density changes as the particle moves through the wall weight
-// (d share / ds times the speed along the normal).
+// ... and their share of the density changes as the particle moves through it, by the same
+// gradient (the push's adjoint: together they conserve energy).
 WEIR_HD inline Real wallWeightDensityRate(const SphParams& p, const Vec3& x, const Vec3& v) {
-    if (p.wallWeight.invStep <= Real(0)) {
-        return Real(0);
-    }
-    const Real step = Real(1) / p.wallWeight.invStep;
-    Real rate = 0;
-    for (int a = 0; a < 3; ++a) {
-        if (isPeriodic(p, a)) {
-            continue;  // no planes there
-        }
-        for (int side = 0; side < 2; ++side) {
-            const Real s = side == 0 ? x[a] - p.boxMin[a] : p.boxMax[a] - x[a];
-            Real share0, push0, share1, push1;
-            wallSample(p.wallWeight, s, share0, push0);
-            wallSample(p.wallWeight, s + step, share1, push1);
-            const Real slope = (share1 - share0) * p.wallWeight.invStep;  // d share / ds <= 0
-            rate += p.restDensity * slope * (side == 0 ? v[a] : -v[a]);   // ds / dt = +-v
-        }
-    }
-    return rate;
+    return wallDensityRate(p.wallWeight, p.boxMin, p.boxMax, x, v, p.periodicAxes);
 }
 
 // ... their share of the kernel sum at x (the fluid they stand for; particle shifting's surface
