@@ -31,8 +31,9 @@ int reportCaughtError(const std::string& prefix = "weir");
 int reportCaughtError(Communicator& comm);
 
 struct RunOptions {
-    std::string scene;  // file path or built-in name; empty: the built-in dam break
-    std::string model;  // fluid.model to run the scene with; "" the scene's own
+    std::string scene;   // file path or built-in name; empty: the built-in dam break
+    std::string model;   // fluid.model to run the scene with; "" the scene's own
+    std::string solver;  // the pressure solver to run it with; "" the scene's own
     std::string backend = "auto";
     std::string neighbours = "auto";
     std::optional<std::int64_t> particles;

@@ -130,6 +130,12 @@ int weirMain(int argc, char** argv) {
                      "kernel, density diffusion, the fluid's own viscosity) or paper (Müller et "
                      "al. 2003 as the paper has it); default: the scene's")
         ->check(CLI::IsMember({"paper", "delta-sph"}));
+    runCmd
+        ->add_option("--solver", run.solver,
+                     "Run the scene with this pressure solver: wcsph (weakly compressible, the "
+                     "default) or dfsph (divergence-free SPH: incompressible, a time step set by "
+                     "the flow's speed); default: the scene's \"solver\"")
+        ->check(CLI::IsMember({"wcsph", "dfsph"}));
     runCmd->add_option("--backend", run.backend, "auto (GPU if present), cuda or cpu")
         ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
         ->capture_default_str();

@@ -2,6 +2,7 @@
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "cli/commands.h"
 #include "cli/progress.h"
@@ -88,6 +89,29 @@ std::string howToOpen(FrameFormat format, const std::string& outDir) {
     return hint;
 }
 
+// A frame's iterations of an iterative solver, for the progress line: "; solves 4.2 sweeps a
+// step (max 9), divergence 1.3"; nothing for WCSPH.
+std::string solverNote(const SolverReport& report) {
+    if (!report.iterative || report.density.solves == 0) {
+        return "";
+    }
+    auto mean = [](const SolveReport& r) {
+        return rounded(r.solves > 0 ? double(r.iterations) / r.solves : 0.0, 2);
+    };
+    std::ostringstream note;
+    note << "; density solve " << mean(report.density) << " sweeps a step (max "
+         << report.density.maxIterations << ")";
+    if (report.divergence.solves > 0) {
+        note << ", divergence " << mean(report.divergence) << " (max "
+             << report.divergence.maxIterations << ")";
+    }
+    const int unconverged = report.density.unconverged + report.divergence.unconverged;
+    if (unconverged > 0) {
+        note << ", " << unconverged << " solves at the sweep limit";
+    }
+    return note.str();
+}
+
 }  // namespace
 
 int runCommand(const RunOptions& options, RunObserver* observer) {
@@ -99,6 +123,9 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         Scene scene = resolveScene(options.scene);
         if (!options.model.empty()) {
             scene = withFluidModel(scene, options.model);
+        }
+        if (!options.solver.empty()) {
+            scene = withSolver(scene, options.solver);
         }
         SetupOptions setupOptions;
         setupOptions.particleCount = options.particles;
@@ -210,7 +237,7 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             const DensityDeviation deviation = densityDeviation(host, sim->params().restDensity);
             worst.max = std::max(worst.max, deviation.max);
             worst.mean = std::max(worst.mean, deviation.mean);
-            progress.setNote(deviation.text());
+            progress.setNote(deviation.text() + solverNote(sim->takeSolverReport()));
             writer->write(int(frame), double(frame) * report.frameInterval, host);
             if (observer != nullptr) {
                 observer->frame(frame, double(frame) * report.frameInterval, host);

@@ -133,6 +133,13 @@ DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend
                                              NeighbourMode mode, SimulationSetup setup,
                                              DistributedOptions options)
     : comm_(comm), options_(options), decomposition_(0, {}) {
+    // Each sweep of DFSPH's solves needs its neighbours' new velocities and stiffnesses from
+    // the other ranks: not exchanged yet.
+    if (setup.method == "dfsph") {
+        throw SimulationError(
+            "solver \"dfsph\" does not run across ranks yet (its solves would need an exchange "
+            "per sweep): run it on one GPU or the CPU without mpirun, or use solver \"wcsph\"");
+    }
     total_ = setup.particleCount();
     const int axis = setup.params.periodicAxes != 0
                          ? slabAxis(setup.params)

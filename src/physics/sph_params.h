@@ -83,6 +83,14 @@ struct SphParams {
     Real surfaceNeighbourKernelSum = 0;
     Real splashKernelSum = 0;  // under it (a drop, a thin sheet) a particle is not shifted
     Real maxDensityRatio = 0;  // blow-up bound on rho / rho0 (0: none)
+
+    // Divergence-free SPH (solver "dfsph", solver/dfsph/): the mean density error at which the
+    // constant-density solve stops, and the mean error dt (drho/dt) / rho0 at which the
+    // divergence-free one does (0: that solve off); sweeps a solve may take at most.
+    Real densityTolerance = 0;
+    Real divergenceTolerance = 0;
+    int maxSolverIterations = 0;
+    Real hydrostaticStartScale = 1;  // the seeded hydrostatic pressure's factor at the start
 };
 
 // Whether axis a (0, 1, 2 for x, y, z) is periodic.

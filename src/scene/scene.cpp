@@ -815,6 +815,12 @@ Scene withFluidModel(const Scene& scene, const std::string& model) {
     return parseSceneNamed(root.dump(), scene.sourcePath, scene.name);
 }
 
+Scene withSolver(const Scene& scene, const std::string& solver) {
+    Json root = Json::parse(scene.json);
+    root["solver"] = solver;
+    return parseSceneNamed(root.dump(), scene.sourcePath, scene.name);
+}
+
 Scene builtinScene(const std::string& name) {
     for (const auto& [stem, text] : embeddedSceneFiles()) {
         if (stem == name) {

@@ -162,6 +162,8 @@ std::vector<std::string> builtinSceneNames();
 // every default that follows the model (equation of state, walls, pressure clamp) follows it
 // too; throws SceneError as parseScene does (e.g. delta-sph fields asked of the paper's model).
 Scene withFluidModel(const Scene& scene, const std::string& model);
+// The scene with its "solver" replaced (a registered pressure solver, solver/methods.h).
+Scene withSolver(const Scene& scene, const std::string& solver);
 // " (did you mean 'dam_break'?)" for a name close to a built-in scene's ("dambreak"), else "".
 std::string didYouMeanBuiltinScene(const std::string& name);
 

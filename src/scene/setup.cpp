@@ -26,6 +26,17 @@ constexpr std::int64_t kDefaultParticleCount = 20000;
 constexpr double kDefaultArtificialViscosity = 0.01;
 constexpr double kDefaultDensityDiffusion = 0.1;
 constexpr double kDeltaSphCfl = 0.25;
+// Divergence-free SPH (solver "dfsph"): dt <= kDfsphCfl d / max |v| (SPlisHSPlasH's default is
+// 0.5 of the particle diameter d); the mean density error and divergence error at which its
+// solves stop (SPlisHSPlasH's defaults: 0.01% and 0.1%), and the most sweeps a solve may take.
+constexpr double kDfsphCfl = 0.4;
+constexpr double kDfsphDensityTolerance = 1e-4;
+constexpr double kDfsphDivergenceTolerance = 1e-3;
+constexpr int kDfsphMaxIterations = 100;
+// ... and its force condition dt <= kDfsphForceNumber sqrt(h / max |a|) (a: the forces but
+// pressure): measured on a tank at rest (0.2 m deep, d = 0.01 m), 0.25 (WCSPH's) let the solves'
+// linear prediction fail (compression past 50% in 0.03 s); 0.1 holds it (RMS speed 0.04 m/s).
+constexpr double kDfsphForceNumber = 0.1;
 // Particle shifting (physics/delta_sph.h): the largest shift a step, in spacings (a guard, not
 // a paper's value: the shift of a healthy flow is a few thousandths of d a step); the relative
 // speed across the kernel from which it acts in full, as a share of the flow's speed scale
@@ -228,6 +239,31 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             "walls' push became the gradient of their density share; not re-measured since): use "
             "walls.model \"particles\" (delta-SPH's default) or fluid.model \"paper\"");
     }
+    const bool dfsph = scene.solver == "dfsph";
+    if (dfsph) {
+        if (!deltaModel) {
+            throw SceneError(where +
+                             ": solver \"dfsph\" runs with the delta-sph model's kernel and "
+                             "viscosity, but fluid.model is \"paper\"; remove fluid.model (or set "
+                             "it to \"delta-sph\"), or use solver \"wcsph\"");
+        }
+        if (scene.walls == WallModel::Simple) {
+            throw SceneError(where +
+                             ": solver \"dfsph\" needs walls of boundary particles, but "
+                             "walls.model is \"simple\"; set walls.model to \"particles\" (the "
+                             "default with delta-sph), or use solver \"wcsph\"");
+        }
+        for (int a = 0; a < 3; ++a) {
+            if (scene.periodic[std::size_t(a)]) {
+                throw SceneError(where +
+                                 ": solver \"dfsph\" does not support periodic axes yet "
+                                 "(container.periodic has " +
+                                 std::string(1, "xyz"[a]) +
+                                 " true); use solver \"wcsph\" for this scene");
+            }
+        }
+    }
+    setup.method = scene.solver;
     const double h = scene.smoothingRatio * d;
     report.smoothingRadius = h;
     report.latticeKernelSum = deltaModel ? wendlandLatticeSum(scene.smoothingRatio)
@@ -399,10 +435,12 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     // Time step: CFL, viscous diffusion and body-force limits; whole steps per output frame.
     const double nu = viscosity / scene.restDensity;
     const double cfl = deltaModel ? kDeltaSphCfl : 0.4;
-    double dtCfl = cfl * h / (c + report.expectedSpeed);
+    // DFSPH: no speed of sound; the CFL condition on the flow's speed alone.
+    double dtCfl =
+        dfsph ? kDfsphCfl * d / report.expectedSpeed : cfl * h / (c + report.expectedSpeed);
     const double viscousLength = deltaModel ? halfH : h;
     double dtViscous = nu > 0 ? 0.125 * viscousLength * viscousLength / nu : 1e300;
-    double dtForce = g > 0 ? 0.25 * std::sqrt(h / g) : 1e300;
+    double dtForce = g > 0 ? (dfsph ? kDfsphForceNumber : 0.25) * std::sqrt(h / g) : 1e300;
     double dtStable = std::min({dtCfl, dtViscous, dtForce});
     double dt = dtStable;
     const bool adaptive = scene.adaptiveTimeStep.value_or(!scene.timeStep);
@@ -431,7 +469,22 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     report.stepsPerFrame = std::max(1, int(steps));
     dt = report.frameInterval / report.stepsPerFrame;
     report.frames = std::int64_t(std::floor(scene.duration * scene.frameRate + 1e-9));
-    if (adaptive) {
+    if (dfsph) {
+        say("pressure solver dfsph (Bender & Koschier 2017): incompressible, no speed of sound "
+            "(the stiffness above is unused); each step a divergence-free solve (mean " +
+            fmt(100 * kDfsphDivergenceTolerance) +
+            "% of rho0 per step) and a constant-density solve (mean density error under " +
+            fmt(100 * kDfsphDensityTolerance) + "%), at most " +
+            std::to_string(kDfsphMaxIterations) + " Jacobi sweeps each");
+    }
+    if (adaptive && dfsph) {
+        say("time step adaptive, recomputed every step on the device: min(" + fmt(kDfsphCfl) +
+            " d / max|v|, " + fmt(kDfsphForceNumber) +
+            " sqrt(h / max|a|), 0.125 (h/2)^2 / nu = " + fmt(dtViscous) +
+            " s), the last step before each frame cut to land on it; about " + fmt(dt) + " s (" +
+            std::to_string(report.stepsPerFrame) + " per frame at the expected speed; CFL " +
+            fmt(dtCfl) + ", force " + fmt(dtForce) + ")");
+    } else if (adaptive) {
         say("time step adaptive, recomputed every step on the device: min(" + fmt(cfl) +
             " h / (c + max|v|), 0.25 sqrt(h / max|a|), 0.125 " + (deltaModel ? "(h/2)" : "h") +
             "^2 / nu = " + fmt(dtViscous) +
@@ -510,6 +563,24 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         p.hydrostaticGradient = Vec3(weight * (scene.restDensity / (c * c)));
         p.noSlip = scene.noSlip;
         p.cflNumber = Real(cfl);
+        if (dfsph) {
+            p.speedOfSound = 0;  // dt <= cflNumber h / max |v| (physics/time_step.h)
+            p.cflNumber = Real(kDfsphCfl * d / h);
+            p.densityTolerance = Real(kDfsphDensityTolerance);
+            p.divergenceTolerance = Real(kDfsphDivergenceTolerance);
+            p.maxSolverIterations = kDfsphMaxIterations;
+            // The solves predict the summed density's change by its rate: the rate takes the
+            // gradient of the very kernel the density sums (no lattice-moment correction), so
+            // that the prediction is that of the sum.
+            p.wendland = WendlandKernel::forRadius(h);
+            // On the lattice the uncorrected gradient reads a linear pressure short by the
+            // kernel's lattice moment: the starting pressure that holds the seeded fluid is
+            // steeper by as much.
+            p.hydrostaticStartScale = Real(1.0 / report.gradientMoment);
+            p.forceNumber = Real(kDfsphForceNumber);
+            p.integrator = IntegratorKind::SemiImplicitEuler;  // the solves assume it
+            p.densityDiffusion = 0;  // the density is summed, not integrated
+        }
         const double shifting = scene.shifting.value_or(0.0);
         if (shifting > 0) {
             p.shifting = Real(shifting * 2 * h * c / 10);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/dfsph/dfsph.h"
 #include "solver/methods.h"
 #include "solver/pressure_solver.h"
 #include "solver/wcsph/wcsph.h"
@@ -16,7 +17,7 @@ template <template <class> class... Method>
 struct MethodTable {};
 
 // The registry: the first entry is the default.
-using Methods = MethodTable<Wcsph>;
+using Methods = MethodTable<Wcsph, Dfsph>;
 
 // The pressure solver named `name` (empty: the default) on backend Exec; nullptr if unknown.
 template <class Exec, template <class> class... Method>

@@ -32,6 +32,22 @@ struct StepContext {
     ObstacleView obstacles;  // obstacles of the simple collision response
 };
 
+// What an iterative solver did since the last report (one frame's worth): per solve kind, the
+// solves run, their velocity updates in all, the most one took, how many stopped at the limit
+// unconverged, and the largest mean error one ended with (relative to rho0).
+struct SolveReport {
+    int solves = 0;
+    long long iterations = 0;
+    int maxIterations = 0;
+    int unconverged = 0;
+    double worstError = 0;
+};
+struct SolverReport {
+    bool iterative = false;  // false: a method with no iterations (WCSPH), nothing below
+    SolveReport density;     // the constant-density solve
+    SolveReport divergence;  // the divergence-free solve
+};
+
 template <class Exec>
 class PressureSolver {
    public:
@@ -49,6 +65,8 @@ class PressureSolver {
     virtual bool capturable() const { return true; }
     // Bytes of the method's own per-particle arrays.
     virtual std::size_t bytesHeld() const = 0;
+    // The iterations since the last call, and a fresh count from here (a host round trip).
+    virtual SolverReport takeReport(Exec&) { return {}; }
 };
 
 }  // namespace weir

@@ -74,6 +74,9 @@ class Simulation {
     virtual long long stepCount() const = 0;
     // Simulated time, s (read back from the device clock).
     virtual double time() const = 0;
+    // What an iterative pressure solver did since the last call (none for WCSPH); a host round
+    // trip, read once a frame.
+    virtual SolverReport takeSolverReport() { return {}; }
 };
 
 // Creates a simulation on a backend with the setup's pressure solver; throws SimulationError if

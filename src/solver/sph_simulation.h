@@ -111,6 +111,7 @@ class SphSimulation final : public Simulation {
     Index particleCount() const override { return store_.count(); }
     long long stepCount() const override { return driver_.read(exec_).step; }
     double time() const override { return driver_.read(exec_).time; }
+    SolverReport takeSolverReport() override { return method_->takeReport(exec_); }
     ParticleArrays particleArrays() override {
         return {store_.pos(), store_.vel(), store_.id(), store_.count(), Exec::isDevice};
     }

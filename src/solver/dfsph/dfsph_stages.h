@@ -1,0 +1,341 @@
+// The stages of divergence-free SPH (Bender & Koschier 2015, 2017), written once for CPU and
+// CUDA. Each stage reads what it needs and writes only particle i's own outputs; the solvers'
+// iterations are Jacobi sweeps of two passes each (a prediction that gives every particle its
+// stiffness, then a velocity update from its own and its neighbours' stiffness).
+//
+// With kappa_i = p_i / rho_i, the pressure acceleration of the symmetric form is
+//   a_i = -sum_j m_j (kappa_i / rho_i + kappa_j / rho_j) grad W_ij - sum_b psi_b kappa_i / rho_i
+//   grad W_ib
+// (boundary particles b mirror i's pressure, Akinci et al. 2012). Asking that one velocity update
+// remove the predicted density change drho_i gives kappa_i = drho_i alpha_i / dt^2 with the factor
+//   alpha_i = rho_i / (|sum_j m_j grad W_ij + sum_b psi_b grad W_ib|^2 + sum_j |m_j grad W_ij|^2)
+// computed once a step: the constant-density solver drives the density predicted at the step's
+// end to rho0 (only compression: a free surface reads light and must not pull), the
+// divergence-free solver drives the density's rate of change to zero.
+#pragma once
+
+#include <cmath>
+
+#include "core/config.h"
+#include "core/vec3.h"
+#include "physics/boundary.h"
+#include "physics/collision.h"
+#include "physics/delta_sph.h"
+#include "physics/faults.h"
+#include "physics/integration.h"
+#include "physics/kernels.h"
+#include "physics/particle_view.h"
+#include "physics/sph_params.h"
+#include "physics/time_step.h"
+
+namespace weir {
+
+// The state of one solve (the constant-density or the divergence-free one), in device memory, so
+// that the iterations test convergence with no host round trip; and what a frame's log reports.
+struct DfsphMonitor {
+    float errorSum;  // this iteration's sum of per-particle errors (the backend's reduction)
+    int done;        // this solve has converged or run out of iterations
+    int iterations;  // velocity updates of this solve so far
+    // Since the last read by the host (one frame's worth):
+    long long totalIterations;  // velocity updates over all solves
+    int solves;                 // solves (steps that ran)
+    int maxIterations;          // the most one solve took
+    int unconverged;            // solves that stopped at the iteration limit
+    float worstError;           // the largest mean error a solve ended with
+};
+
+// Fewer neighbours than this (the full lattice has about 33 at h = 2 d): a particle at a free
+// surface or in spray, whose density rate the divergence-free solver leaves alone (Bender &
+// Koschier 2017 use 20 in 3-D).
+constexpr int kDfsphDivergenceNeighbours = 20;
+
+// After the grid build: particle i's density by summation over fluid and boundary particles
+// (into vel.w) and its factor alpha_i (0 where it has no neighbour).
+template <class Neighbours>
+WEIR_HD inline void dfsphDensityFactorAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                         const SphParams& p, Real* factor) {
+    const Vec3 xi = pv.position(i);
+    const Real h2 = p.wendland.h2;
+    Real rho = p.mass * p.wendland.value(Real(0));
+    Vec3 gradSum, wallGradSum;
+    Real gradSquares = 0;
+    nb.forEachCandidate(i, [&](Index j) {
+        const Vec3 rVec = xi - pv.position(j);
+        const Real r2 = lengthSquared(rVec);
+        if (r2 < h2 && r2 > Real(0)) {
+            const Real r = r2 * reciprocalSqrt(r2);
+            rho += p.mass * p.wendland.value(r);
+            const Vec3 g = rVec * (p.mass * p.wendland.gradientFactor(r));
+            gradSum += g;
+            gradSquares += lengthSquared(g);
+        }
+    });
+    if (p.walls == WallKind::Particles) {
+        const BoundaryView& bv = pv.boundary;
+        forEachBoundaryNeighbour(bv, p, xi, [&](Index b, const Vec3& rVec, Real r2) {
+            const Real r = r2 * reciprocalSqrt(r2);
+            const Real psi = bv.pos[b].w;
+            rho += psi * p.wendland.value(r);
+            wallGradSum += rVec * (psi * p.wendland.gradientFactor(r));
+        });
+    }
+    pv.vel[i].w = rho;
+    // Measured: walls that push by twice i's stiffness (its pressure mirrored, with this factor
+    // made consistent) supported the first step's floor layer better but stirred a tank at rest
+    // ten times more within 0.5 s than walls that push by it once (Akinci et al. 2012, as
+    // SPlisHSPlasH's DFSPH has them).
+    const Real denominator = lengthSquared(gradSum + wallGradSum) + gradSquares;
+    factor[i] = denominator > Real(0) ? rho / denominator : Real(0);
+}
+
+// Each boundary particle's velocity for the viscous term at no-slip walls: the fluid's velocity
+// near it mirrored through the wall, 2 v_wall - (sum_f v_f W_bf) / sum_f W_bf (Adami et al. 2012,
+// as delta-SPH's walls); the wall's own velocity where no fluid is near or the walls slip.
+template <class Neighbours>
+WEIR_HD inline void dfsphWallVelocityAt(Index b, const ParticleView& pv, const Neighbours& nb,
+                                        const SphParams& p, Real4* state) {
+    const BoundaryView& bv = pv.boundary;
+    const Vec3 xb = bv.pos[b].xyz();
+    const Vec3 vWall = bv.velocity != nullptr ? bv.velocity[b].xyz() : Vec3();
+    Real sumW = 0;
+    Vec3 sumV;
+    if (p.noSlip) {
+        const Real h2 = p.wendland.h2;
+        nb.forEachNearPoint(xb, [&](Index f) {
+            const Real r2 = lengthSquared(xb - pv.position(f));
+            if (r2 < h2) {
+                const Real w = p.wendland.value(r2 * reciprocalSqrt(r2 > Real(0) ? r2 : h2));
+                sumW += w;
+                sumV += pv.velocity(f) * w;
+            }
+        });
+    }
+    const Vec3 v = sumW > Real(0) ? vWall * Real(2) - sumV / sumW : vWall;
+    state[b] = Real4::from(v, Real(0));
+}
+
+// The acceleration of everything but pressure: gravity, the fluid's own viscosity (Morris et al.
+// 1997) and the small artificial viscosity between approaching particles, and at no-slip walls
+// their shear, all as delta-SPH has them (physics/delta_sph.h, with no pressure terms). Writes
+// i's velocity after it, v* = v + dt a, into `predicted` (the density rides along in w), and
+// records |a| for the next dt.
+template <class Neighbours>
+WEIR_HD inline void dfsphNonPressureAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                       const SphParams& p, const Real4* wallState, StepClock* clock,
+                                       Real4* predicted) {
+    const Real4 v4 = pv.vel[i];
+    if (clock->dt == Real(0)) {
+        predicted[i] = v4;
+        return;
+    }
+    const Vec3 xi = pv.position(i), vi = v4.xyz();
+    const Real rhoi = v4.w, h2 = p.wendland.h2;
+    Vec3 acc;
+    if (p.dynamicViscosity > Real(0) || p.artificialViscosity > Real(0)) {
+        nb.forEachCandidate(i, [&](Index j) {
+            const Vec3 rVec = xi - pv.position(j);
+            const Real r2 = lengthSquared(rVec);
+            if (r2 < h2 && r2 > Real(0)) {
+                const Real4 vj = pv.vel[j];
+                addFluidMomentum(p, rVec, r2, rhoi, vj.w, Real(0), Real(0), vi, vj.xyz(), acc);
+            }
+        });
+        if (p.walls == WallKind::Particles && p.noSlip && wallState != nullptr) {
+            const BoundaryView& bv = pv.boundary;
+            forEachBoundaryNeighbour(bv, p, xi, [&](Index b, const Vec3& rVec, Real r2) {
+                addBoundaryMomentum(p, rVec, r2, rhoi, Real(0), vi, bv.pos[b].w, wallState[b], acc);
+            });
+        }
+    }
+    const Vec3 a = acc + p.gravity;
+    // The next dt's force condition sees these forces even where pressure balances them (a
+    // tank at rest: the move's own acceleration is then zero, and dt would grow unbounded).
+    recordMax(&clock->maxAccel2, lengthSquared(a));
+    predicted[i] = Real4::from(vi + a * clock->dt, rhoi);
+}
+
+// The rate of i's density under velocities `vel`: sum_j m_j (v_i - v_j) . grad W_ij plus the walls'
+// sum_b psi_b (v_i - v_b) . grad W_ib; `neighbours` gets the number of fluid and boundary
+// neighbours.
+template <class Neighbours>
+WEIR_HD inline Real dfsphDensityRate(Index i, const ParticleView& pv, const Neighbours& nb,
+                                     const SphParams& p, const Real4* vel, int& neighbours) {
+    const Vec3 xi = pv.position(i), vi = vel[i].xyz();
+    const Real h2 = p.wendland.h2;
+    Real rate = 0;
+    int count = 0;
+    nb.forEachCandidate(i, [&](Index j) {
+        const Vec3 rVec = xi - pv.position(j);
+        const Real r2 = lengthSquared(rVec);
+        if (r2 < h2 && r2 > Real(0)) {
+            const Real r = r2 * reciprocalSqrt(r2);
+            rate += p.mass * p.wendland.gradientFactor(r) * dot(vi - vel[j].xyz(), rVec);
+            ++count;
+        }
+    });
+    if (p.walls == WallKind::Particles) {
+        const BoundaryView& bv = pv.boundary;
+        forEachBoundaryNeighbour(bv, p, xi, [&](Index b, const Vec3& rVec, Real r2) {
+            const Vec3 vb = bv.velocity != nullptr ? bv.velocity[b].xyz() : Vec3();
+            rate += boundaryDensityRate(p, rVec, r2, vi, bv.pos[b].w, vb);
+            ++count;
+        });
+    }
+    neighbours = count;
+    return rate;
+}
+
+// The error a solve removes at particle i under velocities `vel` (w: the density), kg/m^3 over
+// the step: the density solve (divergence false) the density predicted at the step's end, rho_i +
+// dt drho_i/dt, over rho0; the divergence solve dt drho_i/dt where it compresses (none at a free
+// surface, fewer than kDfsphDivergenceNeighbours). Never negative: a fluid pushes, it does not
+// pull, so expansion is left alone.
+template <class Neighbours>
+WEIR_HD inline Real dfsphExcess(Index i, const ParticleView& pv, const Neighbours& nb,
+                                const SphParams& p, const Real4* vel, bool divergence, Real dt) {
+    int neighbours = 0;
+    const Real rate = dfsphDensityRate(i, pv, nb, p, vel, neighbours);
+    Real excess;
+    if (divergence) {
+        excess = neighbours >= kDfsphDivergenceNeighbours ? rate * dt : Real(0);
+    } else {
+        excess = vel[i].w + dt * rate - p.restDensity;
+    }
+    return excess > Real(0) ? excess : Real(0);
+}
+
+// One sweep's prediction for particle i: kappa_i = excess alpha_i / dt^2, which one velocity
+// update would need to remove the excess; error gets excess / rho0 for the mean; accumulated sums
+// the solve's stiffness for the next step's warm start, in the form that does not depend on dt:
+// kappa itself for the density solve (a steady pressure field p = rho kappa holds whatever the
+// step), kappa dt for the divergence solve (the velocity it removes, dt kappa / h, does not
+// depend on dt). Nothing once the solve is done.
+template <class Neighbours>
+WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                   const SphParams& p, const Real4* vel, const Real* factor,
+                                   bool divergence, const StepClock* clock,
+                                   const DfsphMonitor* monitor, Real* kappa, float* error,
+                                   Real* accumulated) {
+    if (monitor->done != 0) {
+        return;
+    }
+    const Real dt = clock->dt;
+    const Real excess = dfsphExcess(i, pv, nb, p, vel, divergence, dt);
+    const Real k = excess * factor[i] / (dt * dt);
+    kappa[i] = k;
+    error[i] = float(excess * p.invRestDensity);
+    accumulated[i] += divergence ? k * dt : k;
+}
+
+// Before a solve's sweeps, its warm start (Bender & Koschier 2017): where the particle is
+// compressed already, a share of the stiffness the last step's solve summed to (in the form
+// dfsphPredictAt keeps), applied as a first velocity update; the sum restarts from it. Nowhere
+// else: a push where nothing compresses would part the fluid, and nothing pulls it back.
+template <class Neighbours>
+WEIR_HD inline void dfsphWarmStartAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                     const SphParams& p, const Real4* vel, bool divergence,
+                                     Real share, const StepClock* clock, Real* kappa,
+                                     Real* accumulated) {
+    const Real dt = clock->dt;
+    if (dt == Real(0)) {
+        return;
+    }
+    const Real warm = accumulated[i];
+    const bool compressed = dfsphExcess(i, pv, nb, p, vel, divergence, dt) > Real(0);
+    const Real start = compressed && warm > Real(0) ? share * warm : Real(0);
+    kappa[i] = divergence ? start / dt : start;
+    accumulated[i] = start;
+}
+
+// One thread, after the errors' sum: the iteration's mean error against the tolerance. The solve
+// is done once it is under it after at least minIterations updates, or at maxIterations.
+WEIR_HD inline void dfsphCheck(DfsphMonitor* monitor, Index count, Real tolerance,
+                               int minIterations, int maxIterations) {
+    if (monitor->done != 0) {
+        return;
+    }
+    const float mean = count > 0 ? monitor->errorSum / float(count) : 0.0f;
+    const bool converged = mean <= float(tolerance) && monitor->iterations >= minIterations;
+    if (converged || monitor->iterations >= maxIterations) {
+        monitor->done = 1;
+        monitor->totalIterations += monitor->iterations;
+        monitor->solves += 1;
+        monitor->maxIterations = monitor->iterations > monitor->maxIterations
+                                     ? monitor->iterations
+                                     : monitor->maxIterations;
+        monitor->unconverged += converged ? 0 : 1;
+        monitor->worstError = mean > monitor->worstError ? mean : monitor->worstError;
+        return;
+    }
+    monitor->iterations += 1;
+}
+
+// One thread, before a solve: its state reset (done at once in a no-op step).
+WEIR_HD inline void dfsphBeginSolve(DfsphMonitor* monitor, const StepClock* clock) {
+    monitor->done = clock->dt == Real(0) ? 1 : 0;
+    monitor->iterations = 0;
+}
+
+// The velocity update of one iteration for particle i: v_i -= dt (sum_j m_j (kappa_i / rho_i +
+// kappa_j / rho_j) grad W_ij + sum_b psi_b kappa_i / rho_i grad W_ib). Velocities are updated in
+// place: this pass reads only positions, densities and stiffnesses of others. accumulated (if
+// not null) sums each particle's stiffness over the solve's iterations (the next step's warm
+// start).
+template <class Neighbours>
+WEIR_HD inline void dfsphUpdateAt(Index i, const ParticleView& pv, const Neighbours& nb,
+                                  const SphParams& p, Real4* vel, const Real* kappa,
+                                  const StepClock* clock, const DfsphMonitor* monitor) {
+    if (monitor->done != 0) {
+        return;
+    }
+    const Vec3 xi = pv.position(i);
+    const Real4 v4 = vel[i];
+    const Real termI = kappa[i] * reciprocal(v4.w), h2 = p.wendland.h2;
+    Vec3 acc;
+    nb.forEachCandidate(i, [&](Index j) {
+        const Vec3 rVec = xi - pv.position(j);
+        const Real r2 = lengthSquared(rVec);
+        if (r2 < h2 && r2 > Real(0)) {
+            const Real termJ = kappa[j] * reciprocal(vel[j].w);
+            const Real sum = termI + termJ;
+            if (sum != Real(0)) {
+                const Real r = r2 * reciprocalSqrt(r2);
+                acc += rVec * (-p.mass * sum * p.wendland.gradientFactor(r));
+            }
+        }
+    });
+    if (p.walls == WallKind::Particles && termI != Real(0)) {
+        const BoundaryView& bv = pv.boundary;
+        forEachBoundaryNeighbour(bv, p, xi, [&](Index b, const Vec3& rVec, Real r2) {
+            const Real r = r2 * reciprocalSqrt(r2);
+            acc += rVec * (-bv.pos[b].w * termI * p.wendland.gradientFactor(r));
+        });
+    }
+    vel[i] = Real4::from(v4.xyz() + acc * clock->dt, v4.w);
+}
+
+// The move: x' = x + dt v (v: the solved velocity), the collision response as a safety net, the
+// blow-up checks and the step's largest speed and acceleration for the next dt. Writes the new
+// position and velocity to newPos, newVel (`solved` may be newVel itself).
+WEIR_HD inline void dfsphAdvanceAt(Index i, const ParticleView& pv, const SphParams& p,
+                                   const ObstacleView& obstacles, FaultRecord* fault,
+                                   StepClock* clock, const Real4* solved, Real4* newPos,
+                                   Real4* newVel) {
+    const Real4 start = pv.vel[i];
+    if (clock->dt == Real(0)) {
+        newPos[i] = pv.pos[i];
+        newVel[i] = start;
+        return;
+    }
+    const Real4 v4 = solved[i];
+    Vec3 x = pv.position(i), v = v4.xyz();
+    const Vec3 a = (v - start.xyz()) * reciprocal(clock->dt);
+    // advanceParticle applies v += a dt, x += v dt: the solved velocity and the move by it.
+    Vec3 vStart = start.xyz();
+    advanceParticle(x, vStart, a, i, p, obstacles, fault, clock);
+    checkDensity(start.w, false, i, p, fault, clock);
+    newPos[i] = Real4::from(x, pv.pos[i].w);
+    newVel[i] = Real4::from(vStart, start.w);
+}
+
+}  // namespace weir

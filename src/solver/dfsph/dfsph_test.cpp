@@ -1,0 +1,191 @@
+// Divergence-free SPH on the CPU: a tank at rest holds its density, a dam break stays within the
+// solver's tolerance and agrees with WCSPH on where the water goes, the iterations are reported,
+// and the combinations it does not support fail at once, naming the field.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "scene/scene.h"
+#include "scene/setup.h"
+#include "solver/solver_test_support.h"
+
+namespace weir {
+namespace {
+
+using namespace weir::testing;
+
+Scene dfsphScene(const std::string& body) {
+    return parseScene(
+        R"({"name": "dfsph_test", "solver": "dfsph", "fluid": {"preset": "water"}, )" + body + "}",
+        "<test dfsph>");
+}
+
+// Density deviation from rho0 over the particles a full support below the surface and away from
+// the walls' corners is meaningful for every particle: a summation density reads light only at
+// the free surface, which the solver leaves alone (it removes compression only).
+struct Compression {
+    double mean = 0, max = 0;
+};
+Compression compressionOf(const HostParticles& p, double restDensity) {
+    Compression c;
+    for (Real rho : p.rho) {
+        const double excess = std::max(0.0, double(rho) / restDensity - 1);
+        c.mean += excess;
+        c.max = std::max(c.max, excess);
+    }
+    c.mean /= double(p.size());
+    return c;
+}
+
+TEST(Dfsph, TankAtRestHoldsRestDensityAndStaysAtRest) {
+    const Scene scene = dfsphScene(R"(
+        "container": {"min": [0, 0, 0], "max": [0.2, 0.3, 0.1]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.2, 0.1]}],
+        "particles": {"spacing": 0.01},
+        "time": {"duration": 0.5, "frameRate": 10})");
+    SetupReport report;
+    auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, &report));
+    ASSERT_EQ(sim->method(), "dfsph");
+    sim->computeDensity();
+    HostParticles p;
+    auto rmsSpeed = [](const HostParticles& p) {
+        double squares = 0;
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            squares +=
+                double(p.vx[i]) * p.vx[i] + double(p.vy[i]) * p.vy[i] + double(p.vz[i]) * p.vz[i];
+        }
+        return std::sqrt(squares / double(p.size()));
+    };
+    double rmsEarly = 0;
+    for (int frame = 1; frame <= 5; ++frame) {
+        sim->advanceTo(0.1 * frame);
+        ASSERT_EQ(sim->fault().code, 0) << describeFault(sim->fault(), sim->params());
+        const SolverReport solves = sim->takeSolverReport();
+        ASSERT_TRUE(solves.iterative);
+        EXPECT_GT(solves.density.solves, 0);
+        EXPECT_EQ(solves.density.unconverged, 0) << "frame " << frame;
+        EXPECT_LE(solves.density.worstError, 1e-4 * (1 + 1e-3)) << "frame " << frame;
+        sim->download(p);
+        if (frame == 2) {
+            rmsEarly = rmsSpeed(p);
+        }
+        const Compression c = compressionOf(p, scene.restDensity);
+        // The issue's check: a tank at rest holds rho0 within 0.1%.
+        EXPECT_LT(c.mean, 1e-3) << "frame " << frame;
+        EXPECT_LT(c.max, 1e-2) << "frame " << frame;
+    }
+    // Near rest. The Jacobi sweeps converge the deep column's pressure slowly, and what the
+    // first steps leave unconverged stays as a stir that only the small artificial viscosity
+    // damps: measured RMS speed 0.06 m/s at 0.3 s, 0.04 m/s at 0.5 s, 2-3% of U = sqrt(2 g H)
+    // (delta-SPH's weakly compressible tank keeps 3e-5 U; TankAtRest). It must die down, and be
+    // under 3% of U by 0.5 s; the stray speeds are a known gap (docs/dfsph.md).
+    const double rms = rmsSpeed(p);
+    std::cout << "dfsph tank at rest: RMS speed " << rmsEarly << " m/s at 0.2 s, " << rms
+              << " m/s at 0.5 s, max " << maxSpeed(p) << " m/s, U = " << report.expectedSpeed
+              << " m/s\n";
+    EXPECT_LT(rms, 0.03 * report.expectedSpeed);
+    EXPECT_LT(rms, rmsEarly);
+    // No particle sits on a container plane held there by the collision response.
+    int onPlanes = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        onPlanes += p.y[i] <= 1e-6 || p.x[i] <= 1e-6 || p.x[i] >= 0.2 - 1e-6 ? 1 : 0;
+    }
+    EXPECT_EQ(onPlanes, 0);
+}
+
+// The dam break: every frame within the solver's tolerance (mean compression under 0.1%), the
+// front where the weakly compressible solver puts it (the same physics but for the compression),
+// and much the larger time step.
+TEST(Dfsph, DamBreakHoldsDensityAndAgreesWithWcsph) {
+    const std::string body = R"(
+        "container": {"min": [0, 0, 0], "max": [0.6, 0.4, 0.1]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.3, 0.1]}],
+        "particles": {"spacing": 0.0125},
+        "time": {"duration": 0.25, "frameRate": 20})";
+    const Scene scene = dfsphScene(body);
+    const Scene weakly = withSolver(scene, "wcsph");
+    auto dfsph = makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, nullptr));
+    auto wcsph = makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(weakly, {}, nullptr));
+    dfsph->computeDensity();
+    wcsph->computeDensity();
+    HostParticles a, b;
+    long long iterations = 0;
+    int solves = 0;
+    for (int frame = 1; frame <= 5; ++frame) {
+        const double t = 0.05 * frame;
+        dfsph->advanceTo(t);
+        wcsph->advanceTo(t);
+        ASSERT_EQ(dfsph->fault().code, 0) << describeFault(dfsph->fault(), dfsph->params());
+        ASSERT_EQ(wcsph->fault().code, 0);
+        const SolverReport report = dfsph->takeSolverReport();
+        EXPECT_EQ(report.density.unconverged, 0) << "frame " << frame;
+        iterations += report.density.iterations;
+        solves += report.density.solves;
+        dfsph->download(a);
+        EXPECT_LT(compressionOf(a, scene.restDensity).mean, 1e-3) << "frame " << frame;
+    }
+    wcsph->download(b);
+    std::cout << "dfsph: " << dfsph->stepCount() << " steps, " << double(iterations) / solves
+              << " density sweeps a step; wcsph: " << wcsph->stepCount() << " steps\n";
+    EXPECT_LT(dfsph->stepCount() * 3, wcsph->stepCount());
+    const Compression weak = compressionOf(b, scene.restDensity);
+    const Compression strong = compressionOf(a, scene.restDensity);
+    std::cout << "mean compression: dfsph " << strong.mean << ", wcsph " << weak.mean << "\n";
+    EXPECT_LT(strong.mean * 3, weak.mean);
+    // The front (furthest particle along x) and the centre of mass.
+    auto front = [](const HostParticles& p) { return *std::max_element(p.x.begin(), p.x.end()); };
+    auto centre = [](const HostParticles& p, const std::vector<Real>& axis) {
+        double sum = 0;
+        for (Real v : axis) {
+            sum += v;
+        }
+        return sum / double(p.size());
+    };
+    const double d = 0.0125;
+    EXPECT_GT(front(a), 0.35);  // it moved: the column's foot was at 0.2
+    EXPECT_NEAR(front(a), front(b), 3 * d);
+    // The centres part by a few spacings: DFSPH's fluid does not compress (WCSPH's by up to
+    // 3% here) and its free surface reads light (a summed density).
+    EXPECT_NEAR(centre(a, a.x), centre(b, b.x), 3 * d);
+    EXPECT_NEAR(centre(a, a.y), centre(b, b.y), 3 * d);
+}
+
+TEST(Dfsph, UnsupportedCombinationsFailNamingTheField) {
+    const std::string body = R"(
+        "container": {"min": [0, 0, 0], "max": [0.2, 0.3, 0.1]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.2, 0.1]}],
+        "particles": {"spacing": 0.02})";
+    auto messageOf = [](const Scene& scene) {
+        try {
+            buildSetup(scene, {}, nullptr);
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    const Scene paper = withFluidModel(dfsphScene(body), "paper");
+    EXPECT_NE(messageOf(paper).find("fluid.model is \"paper\""), std::string::npos)
+        << messageOf(paper);
+    const Scene simple = dfsphScene(body + R"(, "walls": {"model": "simple"})");
+    EXPECT_NE(messageOf(simple).find("walls.model is \"simple\""), std::string::npos)
+        << messageOf(simple);
+    const Scene periodic = parseScene(R"({"solver": "dfsph",
+        "container": {"min": [0, 0, 0], "max": [0.2, 0.3, 0.1], "periodic": [true, false, false]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.2, 0.1]}], "particles": {"spacing": 0.02}})",
+                                      "<test>");
+    EXPECT_NE(messageOf(periodic).find("container.periodic has x true"), std::string::npos)
+        << messageOf(periodic);
+    try {
+        parseScene(R"({"solver": "dfsp", "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+                       "blocks": [{"min": [0, 0, 0], "max": [0.5, 0.5, 0.5]}]})",
+                   "<test>");
+        ADD_FAILURE() << "an unknown solver was accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("dfsph"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace weir
