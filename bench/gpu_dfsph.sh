@@ -12,12 +12,12 @@ nvidia-smi -q -d PERFORMANCE >"$out/dfsph/perf-before.txt" 2>&1
 for n in ${sizes//,/ }; do
     for solver in wcsph dfsph; do
         log="$out/dfsph/dam_break-$n-$solver.log"
-        start=$(date +%s.%N)
+        start=$(date +%s%N)
         ./build-gpu/weir run dam_break --solver "$solver" --particles "$n" --frames "$frames" \
             --format ply --overwrite -o "/tmp/dfsph-$n-$solver" >"$log" 2>&1
-        end=$(date +%s.%N)
-        echo "wall $(echo "$end - $start" | bc) s" >>"$log"
-        echo "== $n $solver: $(grep -E "done|error" "$log" | tail -1)"
+        end=$(date +%s%N)
+        echo "wall $(((end - start) / 1000000)) ms" >>"$log"
+        echo "== $n $solver: $(grep -E "done|error" "$log" | tail -1); $(tail -1 "$log")"
         grep -E "^frame" "$log" | tail -2
     done
 done

@@ -91,6 +91,7 @@ struct SphParams {
     Real divergenceTolerance = 0;
     int maxSolverIterations = 0;
     Real hydrostaticStartScale = 1;  // the seeded hydrostatic pressure's factor at the start
+    Real minFactorDenominator = 0;   // the least denominator of the factor alpha, kg^2/m^8
 };
 
 // Whether axis a (0, 1, 2 for x, y, z) is periodic.

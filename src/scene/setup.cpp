@@ -578,6 +578,23 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             // steeper by as much.
             p.hydrostaticStartScale = Real(1.0 / report.gradientMoment);
             p.forceNumber = Real(kDfsphForceNumber);
+            // Half the sum of |m grad W|^2 over a full lattice neighbourhood: the factor's
+            // floor (solver/dfsph/dfsph_stages.h).
+            double squares = 0;
+            const int reach = int(std::ceil(scene.smoothingRatio));
+            for (int i = -reach; i <= reach; ++i) {
+                for (int j = -reach; j <= reach; ++j) {
+                    for (int k = -reach; k <= reach; ++k) {
+                        const double r = d * std::sqrt(double(i * i + j * j + k * k));
+                        if (r > 0 && r < h) {
+                            const double grad =
+                                mass * double(p.wendland.gradientFactor(Real(r))) * r;
+                            squares += grad * grad;
+                        }
+                    }
+                }
+            }
+            p.minFactorDenominator = Real(0.5 * squares);
             p.integrator = IntegratorKind::SemiImplicitEuler;  // the solves assume it
             p.densityDiffusion = 0;  // the density is summed, not integrated
         }
