@@ -90,7 +90,6 @@ struct SphParams {
     Real densityTolerance = 0;
     Real divergenceTolerance = 0;
     int maxSolverIterations = 0;
-    Real hydrostaticStartScale = 1;  // the seeded hydrostatic pressure's factor at the start
     Real minFactorDenominator = 0;   // the least denominator of the factor alpha, kg^2/m^8
 };
 

@@ -573,10 +573,9 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             // gradient of the very kernel the density sums (no lattice-moment correction), so
             // that the prediction is that of the sum.
             p.wendland = WendlandKernel::forRadius(h);
-            // On the lattice the uncorrected gradient reads a linear pressure short by the
-            // kernel's lattice moment: the starting pressure that holds the seeded fluid is
-            // steeper by as much.
-            p.hydrostaticStartScale = Real(1.0 / report.gradientMoment);
+            // (Starting the density solve warm from the seeded hydrostatic pressure was
+            // measured and dropped: a dam break's column face, hydrostatic in the seeding, was
+            // kicked out at 1 m/s in the first step, and a tank at rest settled no better.)
             p.forceNumber = Real(kDfsphForceNumber);
             // Half the sum of |m grad W|^2 over a full lattice neighbourhood: the factor's
             // floor (solver/dfsph/dfsph_stages.h).

@@ -227,15 +227,6 @@ class Dfsph final : public PressureSolver<Exec> {
         s.exec.stageEnd(divergence ? "divergence" : "pressure");
     }
 
-    static void hydrostaticStart(Exec& exec, Real* warm, const Real4* vel, Index n,
-                                 const SphParams& params) {
-        const Real rho0 = params.restDensity;
-        const Real scale = params.stiffness * params.hydrostaticStartScale / kDensityWarmShare;
-        exec.forEach(n, [=] WEIR_HD(Index i) {
-            const Real excess = vel[i].w / rho0 - Real(1);
-            warm[i] = excess > Real(0) ? excess * scale : Real(0);
-        });
-    }
     static void clear(Exec& exec, Real* data, Index n) {
         exec.forEach(n, [=] WEIR_HD(Index i) { data[i] = Real(0); });
     }
@@ -264,12 +255,6 @@ class Dfsph final : public PressureSolver<Exec> {
                 b->resize(n);
                 clear(s.exec, b->data(), Index(n));
             }
-            // The density solve's first warm start is the seeded fluid's hydrostatic pressure
-            // (seeded densities rho0 (1 + g depth / c^2): kappa = p / rho = g depth, steepened by
-            // the kernel's lattice moment, as the discrete gradient reads it short), so that
-            // the first steps need not build it sweep by sweep from nothing (divided by the warm
-            // start's share, so that the whole of it starts the first step).
-            hydrostaticStart(s.exec, warm_[0].data(), s.store.vel(), Index(n), s.params);
         }
         factor_.resize(n);
         kappa_.resize(n);
