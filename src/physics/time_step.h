@@ -25,9 +25,6 @@ struct StepClock {
     unsigned maxAccel2;  // bits of the largest |a|^2
     int step;            // steps taken (no-op steps not counted)
     int landing;         // this step ends on the target
-    // A method's cut of the adaptive step (0 or 1: none): an iterative pressure solver halves
-    // it when a solve ends unconverged and lets it grow back as they converge again.
-    float dtScale;
 };
 
 WEIR_HD inline unsigned floatBits(float f) {
@@ -85,9 +82,6 @@ WEIR_HD inline Real stableTimeStep(const SphParams& p, const StepClock& clock) {
     Real dt = p.cflNumber * h / (p.speedOfSound + vMax);
     if (aMax > Real(0)) {
         dt = fmin(dt, p.forceNumber * std::sqrt(h / aMax));
-    }
-    if (clock.dtScale > 0.0f && clock.dtScale < 1.0f) {
-        dt *= Real(clock.dtScale);
     }
     return fmin(fmin(dt, p.viscousLimit), p.maxTimeStep);
 }

@@ -188,7 +188,7 @@ class Dfsph final : public PressureSolver<Exec> {
         }
         s.exec.stageBegin(divergence ? "divergence" : "pressure");
         const ParticleView pv = view(s);
-        StepClock* clock = s.clock;
+        const StepClock* clock = s.clock;
         DfsphMonitor* monitor = monitor_.data() + (divergence ? 1 : 0);
         const Real* factor = factor_.data();
         Real* kappa = kappa_.data();
@@ -214,9 +214,8 @@ class Dfsph final : public PressureSolver<Exec> {
                                error, accumulated);
             });
             s.exec.sum(error, n, &monitor->errorSum);
-            s.exec.forEach(1, [=] WEIR_HD(Index) {
-                dfsphCheck(monitor, n, tolerance, minimum, maximum, clock);
-            });
+            s.exec.forEach(
+                1, [=] WEIR_HD(Index) { dfsphCheck(monitor, n, tolerance, minimum, maximum); });
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
                 dfsphUpdateAt(i, pv, nb, params, vel, kappa, clock, monitor);
             });

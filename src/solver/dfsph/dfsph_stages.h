@@ -255,7 +255,7 @@ WEIR_HD inline void dfsphWarmStartAt(Index i, const ParticleView& pv, const Neig
 // One thread, after the errors' sum: the iteration's mean error against the tolerance. The solve
 // is done once it is under it after at least minIterations updates, or at maxIterations.
 WEIR_HD inline void dfsphCheck(DfsphMonitor* monitor, Index count, Real tolerance,
-                               int minIterations, int maxIterations, StepClock* clock) {
+                               int minIterations, int maxIterations) {
     if (monitor->done != 0) {
         return;
     }
@@ -270,17 +270,6 @@ WEIR_HD inline void dfsphCheck(DfsphMonitor* monitor, Index count, Real toleranc
                                      : monitor->maxIterations;
         monitor->unconverged += converged ? 0 : 1;
         monitor->worstError = mean > monitor->worstError ? mean : monitor->worstError;
-        // The step's dt adapts to the solver as well as to the flow: a solve that ends at the
-        // limit halves the next steps' dt (measured: a 1M-particle dam break from rest, 115
-        // particles deep, took more sweeps than the limit at the force condition's dt and blew up
-        // in its seventh step; at a third of that dt it ran), and solves that converge in under a
-        // quarter of the limit let it grow back by 5% a step.
-        const float scale = clock->dtScale > 0.0f ? clock->dtScale : 1.0f;
-        if (!converged) {
-            clock->dtScale = fmaxf(scale * 0.5f, 1.0f / 64);
-        } else if (monitor->iterations * 4 < maxIterations && scale < 1.0f) {
-            clock->dtScale = fminf(scale * 1.05f, 1.0f);
-        }
         return;
     }
     monitor->iterations += 1;
