@@ -47,6 +47,7 @@ struct SphParams {
     Real forceNumber = 0.25;   // dt <= forceNumber sqrt(h / max |a|)
     Real viscousLimit = 1e30;  // dt <= 0.125 h^2 / nu, s (constant)
     Real maxTimeStep = 1e30;   // s
+    Real minCflSpeed = 0;      // the CFL condition's least max |v|, m/s (DFSPH: the flow's scale)
     IntegratorKind integrator = IntegratorKind::SemiImplicitEuler;
 
     Vec3 boxMin, boxMax;  // container walls
@@ -90,7 +91,7 @@ struct SphParams {
     Real densityTolerance = 0;
     Real divergenceTolerance = 0;
     int maxSolverIterations = 0;
-    Real minFactorDenominator = 0;   // the least denominator of the factor alpha, kg^2/m^8
+    Real minFactorDenominator = 0;  // the least denominator of the factor alpha, kg^2/m^8
 };
 
 // Whether axis a (0, 1, 2 for x, y, z) is periodic.

@@ -77,7 +77,8 @@ WEIR_HD inline Real stableTimeStep(const SphParams& p, const StepClock& clock) {
         return p.timeStep;
     }
     const Real h = p.kernel.h;
-    const Real vMax = std::sqrt(Real(bitsFloat(clock.maxSpeed2)));
+    Real vMax = std::sqrt(Real(bitsFloat(clock.maxSpeed2)));
+    vMax = vMax > p.minCflSpeed ? vMax : p.minCflSpeed;
     const Real aMax = std::sqrt(Real(bitsFloat(clock.maxAccel2)));
     Real dt = p.cflNumber * h / (p.speedOfSound + vMax);
     if (aMax > Real(0)) {
