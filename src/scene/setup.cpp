@@ -410,8 +410,10 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
                 "stretched flow's particles from tearing apart, as in the Taylor-Green vortex, "
                 "but is not yet safe in violent flows, docs/physics.md)");
         }
-        say("density by the continuity equation, starting hydrostatic in each fluid block "
-            "(rho = rho0 + rho0 |g| depth / c^2), rho0 in spheres");
+        say(dfsph ? "density summed over the neighbours every step (solver dfsph); the "
+                    "artificial viscosity's c is the one above, though no pressure uses it"
+                  : "density by the continuity equation, starting hydrostatic in each fluid "
+                    "block (rho = rho0 + rho0 |g| depth / c^2), rho0 in spheres");
     } else if (scene.viscosity) {
         const double artificial = scene.restDensity * 0.1 * h * c / 10.0;
         viscosity = *scene.viscosity;
