@@ -28,7 +28,7 @@ class Dfsph final : public PressureSolver<Exec> {
         "divergence-free SPH (Bender & Koschier 2017: incompressible, a time step set by the "
         "flow's speed, density held within 0.01-0.1%)";
 
-    explicit Dfsph(const SphParams& params) : params_(params) {}
+    explicit Dfsph(const SphParams&) {}
 
     void step(Context& s) override {
         StepClock* clock = s.clock;
@@ -278,7 +278,6 @@ class Dfsph final : public PressureSolver<Exec> {
     static constexpr Real kDensityWarmShare = Real(0.5);
     static constexpr Real kDivergenceWarmShare = Real(0.5);
 
-    SphParams params_;
     Buffer<Real> warm_[2];  // per particle, the stiffness summed by the last step's [0] density,
                             // [1] divergence solve (the warm start)
     Buffer<Real> warmNext_[2];      // the same in the grid build's new order
