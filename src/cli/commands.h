@@ -164,9 +164,6 @@ class RunObserverList : public RunObserver {
     std::vector<std::unique_ptr<RunObserver>> list_;
 };
 
-// A scene file path or a built-in scene's name; empty: the built-in dam break.
-Scene resolveScene(const std::string& spec);
-
 int runCommand(const RunOptions& options, RunObserver* observer = nullptr);
 int meshCommand(const MeshOptions& options);
 // `weir run --mesh`: writes <out>/mesh/surface_NNNNN.{obj,ply} for every frame. Throws

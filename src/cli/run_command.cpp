@@ -10,6 +10,7 @@
 #include "cluster/distributed_simulation.h"
 #include "core/check.h"
 #include "grid/cell_id.h"
+#include "io/frame_index.h"
 #include "io/frame_writer.h"
 #include "scene/scene.h"
 #include "scene/setup.h"
@@ -17,65 +18,11 @@
 
 namespace weir {
 
-Scene resolveScene(const std::string& spec) {
-    if (spec.empty()) {
-        return builtinScene("dam_break");
-    }
-    // A folder of that name (say out/dam_break/ seen from out/) does not hide a built-in scene.
-    if (std::filesystem::exists(spec) && !std::filesystem::is_directory(spec)) {
-        return loadScene(spec);
-    }
-    for (const std::string& name : builtinSceneNames()) {
-        if (spec == name) {
-            return builtinScene(name);
-        }
-    }
-    std::string names;
-    for (const std::string& name : builtinSceneNames()) {
-        names += (names.empty() ? "" : ", ") + name;
-    }
-    const std::filesystem::path path(spec);
-    if (spec.find('/') != std::string::npos || path.has_extension()) {
-        // Meant as a file: say that it is missing, and name a built-in scene it may stand for.
-        try {
-            return loadScene(spec);
-        } catch (const SceneError& e) {
-            const std::string hint = didYouMeanBuiltinScene(path.stem().string());
-            throw SceneError(
-                std::string(e.what()) +
-                (hint.empty() ? "" : "; a built-in scene is named without a path or .json" + hint));
-        }
-    }
-    throw SceneError("scene '" + spec + "': no such file, and no built-in scene of that name" +
-                     didYouMeanBuiltinScene(spec) + "; the built-in scenes are " + names +
-                     " (weir info lists them)");
-}
-
 namespace {
 
 std::ostream& nullStream() {
     static std::ostream sink(nullptr);  // no buffer: writes are dropped
     return sink;
-}
-
-// What frames.json records of the run, so that `weir render DIR` needs no --scene and knows the
-// particle spacing (io/frame_index.h reads it back). A scene file is named by its absolute path,
-// which its mesh obstacles' paths are relative to.
-nlohmann::json runRecord(const Scene& scene, std::int64_t particles, double spacing) {
-    std::string source = scene.sourcePath;
-    if (source.rfind("<", 0) != 0) {
-        std::error_code ec;
-        const std::filesystem::path absolute = std::filesystem::absolute(source, ec);
-        source = ec ? source : absolute.lexically_normal().string();
-    }
-    nlohmann::json definition = nlohmann::json::object();
-    if (!scene.json.empty()) {
-        definition = nlohmann::json::parse(scene.json);
-    }
-    return {{"scene", {{"name", scene.name}, {"source", source}, {"definition", definition}}},
-            {"particles", particles},
-            {"spacing", spacing},
-            {"weir", WEIR_VERSION}};
 }
 
 // The frame format's hint with its placeholders filled: "out/dam_break/frame.pvd in ParaView ...".
@@ -196,7 +143,8 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         std::unique_ptr<FrameWriter> writer;
         if (root) {
             writer = std::make_unique<FrameWriter>(outDir, format);
-            writer->setRecord(runRecord(scene, sim->particleCount(), report.spacing));
+            writer->setRecord(makeRunRecord(scene.name, scene.sourcePath, scene.json,
+                                            sim->particleCount(), report.spacing, WEIR_VERSION));
         }
         HostParticles host;
         sim->computeDensity();

@@ -37,6 +37,25 @@ nlohmann::json loadIndex(const std::string& dir, const std::string& indexPath) {
 
 }  // namespace
 
+nlohmann::json makeRunRecord(const std::string& sceneName, const std::string& sceneSource,
+                             const std::string& sceneJson, std::int64_t particles, double spacing,
+                             const std::string& version) {
+    std::string source = sceneSource;
+    if (source.rfind("<", 0) != 0) {
+        std::error_code ec;
+        const fs::path absolute = fs::absolute(source, ec);
+        source = ec ? source : absolute.lexically_normal().string();
+    }
+    nlohmann::json definition = nlohmann::json::object();
+    if (!sceneJson.empty()) {
+        definition = nlohmann::json::parse(sceneJson);
+    }
+    return {{"scene", {{"name", sceneName}, {"source", source}, {"definition", definition}}},
+            {"particles", particles},
+            {"spacing", spacing},
+            {"weir", version}};
+}
+
 RunRecord readRunRecord(const std::string& dir) {
     const std::string indexPath = (fs::path(dir) / "frames.json").string();
     const nlohmann::json index = loadIndex(dir, indexPath);

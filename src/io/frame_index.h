@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,14 @@ struct RunRecord {
     std::string format;  // "vtu", ...
     std::size_t frames = 0;
 };
+
+// What a run records in frames.json besides its frames (FrameWriter::setRecord), so that
+// `weir render DIR` needs no --scene and knows the particle spacing; readRunRecord reads it back.
+// A scene file is named by its absolute path, which its mesh obstacles' paths are relative to;
+// a built-in scene's source ("<built-in NAME>") as it is.
+nlohmann::json makeRunRecord(const std::string& sceneName, const std::string& sceneSource,
+                             const std::string& sceneJson, std::int64_t particles, double spacing,
+                             const std::string& version);
 
 // The record in <dir>/frames.json; throws IoError as readFrameIndex does.
 RunRecord readRunRecord(const std::string& dir);

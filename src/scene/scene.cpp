@@ -821,6 +821,23 @@ Scene withSolver(const Scene& scene, const std::string& solver) {
     return parseSceneNamed(root.dump(), scene.sourcePath, scene.name);
 }
 
+Scene withOverrides(const Scene& scene, const std::string& patchJson) {
+    Json patch;
+    try {
+        patch = Json::parse(patchJson);
+    } catch (const Json::parse_error& e) {
+        throw SceneError("overrides of scene '" + scene.name + "': not JSON: " + e.what());
+    }
+    if (!patch.is_object()) {
+        throw SceneError("overrides of scene '" + scene.name + "': " + asWritten(patch) +
+                         " is not allowed; give an object of scene fields, e.g. "
+                         "{\"fluid\": {\"viscosity\": 0.01}}");
+    }
+    Json root = Json::parse(scene.json);
+    root.merge_patch(patch);
+    return parseSceneNamed(root.dump(), scene.sourcePath, scene.name);
+}
+
 Scene builtinScene(const std::string& name) {
     for (const auto& [stem, text] : embeddedSceneFiles()) {
         if (stem == name) {
@@ -860,6 +877,40 @@ std::vector<std::string> builtinSceneNames() {
         names.push_back(entry.first);
     }
     return names;
+}
+
+Scene resolveScene(const std::string& spec) {
+    if (spec.empty()) {
+        return builtinScene("dam_break");
+    }
+    // A folder of that name (say out/dam_break/ seen from out/) does not hide a built-in scene.
+    if (std::filesystem::exists(spec) && !std::filesystem::is_directory(spec)) {
+        return loadScene(spec);
+    }
+    for (const std::string& name : builtinSceneNames()) {
+        if (spec == name) {
+            return builtinScene(name);
+        }
+    }
+    std::string names;
+    for (const std::string& name : builtinSceneNames()) {
+        names += (names.empty() ? "" : ", ") + name;
+    }
+    const std::filesystem::path path(spec);
+    if (spec.find('/') != std::string::npos || path.has_extension()) {
+        // Meant as a file: say that it is missing, and name a built-in scene it may stand for.
+        try {
+            return loadScene(spec);
+        } catch (const SceneError& e) {
+            const std::string hint = didYouMeanBuiltinScene(path.stem().string());
+            throw SceneError(
+                std::string(e.what()) +
+                (hint.empty() ? "" : "; a built-in scene is named without a path or .json" + hint));
+        }
+    }
+    throw SceneError("scene '" + spec + "': no such file, and no built-in scene of that name" +
+                     didYouMeanBuiltinScene(spec) + "; the built-in scenes are " + names +
+                     " (weir info lists them)");
 }
 
 }  // namespace weir

@@ -164,6 +164,14 @@ std::vector<std::string> builtinSceneNames();
 Scene withFluidModel(const Scene& scene, const std::string& model);
 // The scene with its "solver" replaced (a registered pressure solver, solver/methods.h).
 Scene withSolver(const Scene& scene, const std::string& solver);
+// The scene with `patchJson` (a JSON object of scene fields) merged into it as a JSON merge patch
+// (RFC 7396: objects merge field by field, anything else replaces, null removes), then read
+// again; throws SceneError as parseScene does, naming the field a bad override gives.
+Scene withOverrides(const Scene& scene, const std::string& patchJson);
+// A scene file path or a built-in scene's name, as `weir run SCENE` takes it; empty: the built-in
+// dam break. Throws SceneError naming the file, or listing the built-in scenes with a
+// did-you-mean.
+Scene resolveScene(const std::string& spec);
 // " (did you mean 'dam_break'?)" for a name close to a built-in scene's ("dambreak"), else "".
 std::string didYouMeanBuiltinScene(const std::string& name);
 
