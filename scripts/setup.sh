@@ -13,7 +13,10 @@ packages=(cmake ninja-build g++ pkg-config libgtest-dev libbenchmark-dev nlohman
           libglfw3-dev libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0 libpng-dev xvfb xauth
           ffmpeg
           # distributed runs (mpirun -n R weir run): OpenMPI
-          libopenmpi-dev openmpi-bin)
+          libopenmpi-dev openmpi-bin
+          # the Python module (import weir): headers and venv; nanobind, NumPy, pytest and
+          # matplotlib come from PyPI into a virtual environment (below)
+          python3-dev python3-venv)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -36,8 +39,34 @@ else
     echo "weir setup: no nvcc found, building the CPU backend only"
 fi
 
+# The Python module (src/python/, docs/python.md) builds against a virtual environment in the
+# build folder, which holds what it needs from PyPI: nanobind (the bindings), NumPy, pytest and
+# matplotlib (its tests and worked example), scikit-build-core (pip install .). A venv rather than
+# pip --user: Debian 12's pip refuses to install into the system's Python (PEP 668).
+# WEIR_PYTHON=0 builds without it.
+python_args=()
+if [ "${WEIR_PYTHON:-1}" != 0 ]; then
+    venv=$build/python-env
+    if [ ! -x "$venv/bin/python" ]; then
+        mkdir -p "$build"
+        python3 -m venv --system-site-packages "$venv"
+    fi
+    if ! "$venv/bin/python" -c "import nanobind, numpy, pytest, matplotlib, scikit_build_core" \
+            2>/dev/null; then
+        echo "weir setup: installing nanobind, numpy, pytest, matplotlib, scikit-build-core" \
+             "into $venv"
+        "$venv/bin/python" -m pip install -q --disable-pip-version-check \
+            nanobind numpy pytest matplotlib scikit-build-core
+    fi
+    python_args=(-DPython_EXECUTABLE="$venv/bin/python")
+fi
+
 if [ ! -f "$build/CMakeCache.txt" ]; then
-    cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release
+    cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+        ${python_args[@]+"${python_args[@]}"}
+elif [ ${#python_args[@]} -gt 0 ] &&
+        ! grep -q "^Python_EXECUTABLE:[A-Z]*=$venv/bin/python\$" "$build/CMakeCache.txt"; then
+    cmake "$build" "${python_args[@]}" >/dev/null  # a build folder from before the module
 fi
 cmake --build "$build" -j "$(nproc)"
 

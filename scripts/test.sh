@@ -10,6 +10,16 @@ cd "$root/build"
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 ctest --output-on-failure -j "$(nproc)" "$@"
 
+# The Python module's tests (src/python/*_test.py, pytest): the module as built in the build
+# folder (build/python/weir), compared with the weir binary beside it; the CUDA and DLPack-on-GPU
+# tests skip without a GPU. CI does not also run `pip install .` or `pip wheel .`: scikit-build-core
+# builds in a folder of its own, which would compile the engine a second time (several minutes of
+# CI's two cores), for the same CMake target that is built and tested here.
+if [ "${WEIR_PYTHON:-1}" != 0 ]; then
+    PYTHONPATH="$root/build/python" WEIR_BINARY="$root/build/weir" \
+        "$root/build/python-env/bin/python" -m pytest -q -p no:cacheprovider "$root/src/python"
+fi
+
 # Fuzzing as a habit (fuzz/README.md): every reader of outside input (scenes, OBJ/STL meshes,
 # VTU/PLY/CSV frames) under libFuzzer with address, undefined-behaviour and float-cast-overflow
 # sanitizers, WEIR_FUZZ_SECONDS each (default 30). A step of its own after ctest rather than a

@@ -37,6 +37,7 @@ void ScriptedSimulation::step(std::int64_t steps) {
                                     " is not allowed; give n >= 0 steps");
     }
     ++version_;
+    viewsShared_ = false;
     while (steps > 0) {
         const int batch = int(std::min<std::int64_t>(steps, INT_MAX));
         sim_->advance(batch);
@@ -53,6 +54,7 @@ void ScriptedSimulation::advanceTo(double time) {
                                     std::to_string(now) + " s");
     }
     ++version_;
+    viewsShared_ = false;
     sim_->advanceTo(time);
     checkFault();
 }
@@ -70,7 +72,7 @@ void ScriptedSimulation::checkFault() {
 }
 
 const HostParticles& ScriptedSimulation::particles() {
-    if (hostVersion_ != version_) {
+    if (hostVersion_ != version_ || viewsShared_) {
         sim_->download(host_);
         hostVersion_ = version_;
     }
@@ -79,7 +81,7 @@ const HostParticles& ScriptedSimulation::particles() {
 
 ParticleArrays ScriptedSimulation::deviceArrays() {
     sim_->synchronize();
-    ++version_;  // the caller may write to them: the host copy is stale from here on
+    viewsShared_ = true;  // the caller may write to them: no host copy is current till a step
     return sim_->particleArrays();
 }
 

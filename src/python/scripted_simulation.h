@@ -54,7 +54,8 @@ class ScriptedSimulation {
     // downloaded on the first call after a step, then kept.
     const HostParticles& particles();
     // The particle arrays where they live, in cell order, after waiting for queued work; valid
-    // until the next step.
+    // until the next step. Until then particles() downloads afresh on every call, as the
+    // caller may write to them.
     ParticleArrays deviceArrays();
     // The fluid's surface by marching cubes; a spacing of 0 takes the run's lattice spacing.
     TriangleMesh surface(Backend backend, SurfaceOptions options);
@@ -79,6 +80,7 @@ class ScriptedSimulation {
     HostParticles host_;
     std::uint64_t version_ = 0;
     std::uint64_t hostVersion_ = ~std::uint64_t(0);
+    bool viewsShared_ = false;  // particle views handed out since the last step
 };
 
 }  // namespace weir
