@@ -56,7 +56,7 @@ if [ "${WEIR_PYTHON:-1}" != 0 ]; then
         echo "weir setup: installing nanobind, numpy, pytest, matplotlib, scikit-build-core" \
              "into $venv"
         "$venv/bin/python" -m pip install -q --disable-pip-version-check \
-            nanobind numpy pytest matplotlib scikit-build-core
+            nanobind==3.1.0 numpy pytest matplotlib scikit-build-core
     fi
     python_args=(-DPython_EXECUTABLE="$venv/bin/python")
 fi

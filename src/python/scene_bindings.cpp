@@ -74,6 +74,7 @@ void bindScene(nb::module_& m) {
                                                 : jsonText(patch));
             },
             nb::arg("overrides"),
+            nb::sig("def with_overrides(self, overrides: dict[str, typing.Any] | str) -> Scene"),
             "The scene with `overrides` (a dict of scene fields, or its JSON text) merged in, "
             "field by field (a JSON merge patch: nested dicts merge, other values replace, None "
             "removes a field), then checked again: e.g. {'fluid': {'viscosity': 0.01}}.")
@@ -84,6 +85,7 @@ void bindScene(nb::module_& m) {
              "The scene with its pressure solver set ('wcsph' or 'dfsph').")
         .def(
             "to_dict", [](const Scene& scene) { return jsonValue(scene.json); },
+            nb::sig("def to_dict(self) -> dict[str, typing.Any]"),
             "The scene's fields as read (a dict, as in a scene file).")
         .def_prop_ro(
             "json", [](const Scene& scene) { return scene.json; },
@@ -114,6 +116,8 @@ void bindScene(nb::module_& m) {
         });
 
     m.def("load_scene", &sceneFrom, nb::arg("scene"),
+          nb::sig("def load_scene(scene: Scene | str | os.PathLike[str] | dict[str, typing.Any]) "
+                  "-> Scene"),
           "A scene from a file path or built-in scene name (as weir run SCENE takes it), a "
           "pathlib.Path, a dict of scene fields, or a Scene (returned as is). Raises SceneError "
           "naming the file, the field and the value, with a did-you-mean for a near name.");

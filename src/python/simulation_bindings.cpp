@@ -3,6 +3,7 @@
 // explain() and a per-frame callback. weir.FrameWriter and weir.Mesh write what the CLI writes.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/filesystem.h>
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
@@ -180,7 +181,7 @@ nb::dict explain(ScriptedSimulation& sim) {
 }
 
 void run(nb::handle self, std::optional<std::int64_t> frames, nb::handle onFrame,
-         std::optional<std::string> out, const std::string& format,
+         std::optional<std::filesystem::path> out, const std::string& format,
          const std::vector<std::string>& meshFormats) {
     ScriptedSimulation& sim = nb::cast<ScriptedSimulation&>(self);
     const double interval = sim.report().frameInterval;
@@ -190,7 +191,7 @@ void run(nb::handle self, std::optional<std::int64_t> frames, nb::handle onFrame
     }
     std::unique_ptr<FrameWriter> writer;
     if (out) {
-        writer = std::make_unique<FrameWriter>(*out, parseFrameFormat(format));
+        writer = std::make_unique<FrameWriter>(out->string(), parseFrameFormat(format));
     }
     std::vector<MeshFormat> meshes;
     for (const std::string& name : meshFormats) {
@@ -199,7 +200,7 @@ void run(nb::handle self, std::optional<std::int64_t> frames, nb::handle onFrame
     if (!meshes.empty() && !out) {
         throw std::invalid_argument("run(mesh=...) writes into out/mesh/: give out= as well");
     }
-    const std::string meshDir = out ? (std::filesystem::path(*out) / "mesh").string() : "";
+    const std::string meshDir = out ? (*out / "mesh").string() : "";
     if (!meshes.empty()) {
         std::filesystem::create_directories(meshDir);
     }
@@ -280,8 +281,9 @@ void bindSimulation(nb::module_& m) {
             "triangle_count", [](const Mesh& m) { return m.mesh.triangleCount(); }, "T.")
         .def(
             "write",
-            [](const Mesh& m, const std::string& path, std::optional<std::string> format) {
-                writeMesh(path, meshFormatFor(path, format), m.mesh);
+            [](const Mesh& m, const std::filesystem::path& path,
+               std::optional<std::string> format) {
+                writeMesh(path.string(), meshFormatFor(path.string(), format), m.mesh);
             },
             nb::arg("path"), nb::arg("format") = nb::none(),
             "Writes the mesh atomically; the format ('obj' or 'ply', weir.mesh_formats()) "
@@ -293,9 +295,9 @@ void bindSimulation(nb::module_& m) {
                             "weir render and weir mesh read the folder.")
         .def(
             "__init__",
-            [](FrameWriter* self, const std::string& directory, const std::string& format,
+            [](FrameWriter* self, const std::filesystem::path& directory, const std::string& format,
                const std::string& baseName) {
-                new (self) FrameWriter(directory, parseFrameFormat(format), baseName);
+                new (self) FrameWriter(directory.string(), parseFrameFormat(format), baseName);
             },
             nb::arg("directory"), nb::arg("format") = "vtu", nb::arg("base_name") = "frame",
             "Creates the folder and its parents (IoError if impossible); format: "
@@ -343,6 +345,11 @@ void bindSimulation(nb::module_& m) {
             nb::arg("solver") = nb::none(), nb::arg("model") = nb::none(),
             nb::arg("particles") = nb::none(), nb::arg("neighbours") = "auto",
             nb::arg("overrides") = nb::none(),
+            nb::sig("def __init__(self, scene: Scene | str | os.PathLike[str] | "
+                    "dict[str, typing.Any], *, backend: str = 'auto', solver: str | None = None, "
+                    "model: str | None = None, particles: int | None = None, "
+                    "neighbours: str = 'auto', overrides: dict[str, typing.Any] | str | None = "
+                    "None) -> None"),
             "scene: a Scene, a file path or built-in name, or a dict (weir.load_scene). "
             "backend: 'auto' (the GPU when one is visible), 'cpu' or 'cuda'. solver: 'wcsph' or "
             "'dfsph' (None: the scene's). model: 'delta-sph' or 'paper' (None: the scene's). "
@@ -361,6 +368,10 @@ void bindSimulation(nb::module_& m) {
         .def("run", &run, nb::arg("frames") = nb::none(), nb::arg("on_frame") = nb::none(),
              nb::arg("out") = nb::none(), nb::arg("format") = "vtu",
              nb::arg("mesh") = std::vector<std::string>{},
+             nb::sig("def run(self, frames: int | None = None, on_frame: "
+                     "collections.abc.Callable[[Simulation, int, float], object] | None = None, "
+                     "out: str | os.PathLike[str] | None = None, format: str = 'vtu', "
+                     "mesh: collections.abc.Sequence[str] = []) -> None"),
              "Runs frame by frame, as weir run: frames lie at multiples of the scene's frame "
              "interval; the current state is the first when it lies on one. frames: how many "
              "after the first (None: to the scene's duration). on_frame(sim, index, time) is "
@@ -416,8 +427,10 @@ void bindSimulation(nb::module_& m) {
             "inflates); backend None: the simulation's.")
         .def(
             "write_frame",
-            [](ScriptedSimulation& s, const std::string& path, std::optional<std::string> format) {
-                std::string ext = std::filesystem::path(path).extension().string();
+            [](ScriptedSimulation& s, const std::filesystem::path& file,
+               std::optional<std::string> format) {
+                const std::string path = file.string();
+                const std::string ext = file.extension().string();
                 const FrameFormat f =
                     parseFrameFormat(format ? *format : (ext.empty() ? ext : ext.substr(1)));
                 f.entry().write(path, s.particles(), s.simulation().time());
