@@ -483,7 +483,7 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
 
     FieldReader top(root, "", source,
                     {"name", "description", "container", "blocks", "spheres", "obstacles", "fluid",
-                     "particles", "gravity", "time", "walls", "limits", "solver"});
+                     "particles", "gravity", "time", "walls", "limits", "solver", "dfsph"});
     Scene scene;
     scene.sourcePath = source;
     scene.json = root.dump();
@@ -760,6 +760,17 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
         top.fail("solver", top.written("solver"),
                  allowed.substr(allowed.find("allowed are ") + 12));
     }
+    FieldReader dfsph =
+        top.object("dfsph", {"densityError", "divergenceError", "maxSweeps", "cfl"});
+    Scene::DfsphSettings& settings = scene.dfsph;
+    settings.densityErrorPercent =
+        dfsph.number("densityError", positiveUpTo(10), settings.densityErrorPercent);
+    settings.divergenceErrorPercent =
+        dfsph.number("divergenceError", between(0, 100), settings.divergenceErrorPercent);
+    Range sweeps = between(2, 10000);
+    sweeps.integer = true;
+    settings.maxSweeps = int(dfsph.number("maxSweeps", sweeps, settings.maxSweeps));
+    settings.cfl = dfsph.number("cfl", positiveUpTo(2), settings.cfl);
     return scene;
 }
 

@@ -148,6 +148,16 @@ struct Scene {
     double maxCompression = 0.5;     // "limits.maxCompression": blow-up past rho0 (1 + this)
 
     std::string solver;  // "solver": the pressure solver (solver/methods.h); "" the default
+
+    // "dfsph": {...}, the settings of solver "dfsph" (unused by the others). Defaults are
+    // SPlisHSPlasH's tolerances.
+    struct DfsphSettings {
+        double densityErrorPercent = 0.01;    // "densityError": mean |rho - rho0| / rho0, %
+        double divergenceErrorPercent = 0.1;  // "divergenceError": mean dt |Drho/Dt| / rho0, %;
+                                              // 0: no divergence-free solve
+        int maxSweeps = 100;                  // "maxSweeps": the most Jacobi sweeps of a solve
+        double cfl = 0.4;                     // "cfl": dt <= cfl d / max |v|
+    } dfsph;
 };
 
 // Reads and validates a scene file; throws SceneError naming file, field, value, allowed range.

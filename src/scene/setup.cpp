@@ -26,14 +26,9 @@ constexpr std::int64_t kDefaultParticleCount = 20000;
 constexpr double kDefaultArtificialViscosity = 0.01;
 constexpr double kDefaultDensityDiffusion = 0.1;
 constexpr double kDeltaSphCfl = 0.25;
-// Divergence-free SPH (solver "dfsph"): dt <= kDfsphCfl d / max |v| (SPlisHSPlasH's default is
-// 0.5 of the particle diameter d); the mean density error and divergence error at which its
-// solves stop (SPlisHSPlasH's defaults: 0.01% and 0.1%), and the most sweeps a solve may take.
-constexpr double kDfsphCfl = 0.4;
-constexpr double kDfsphDensityTolerance = 1e-4;
-constexpr double kDfsphDivergenceTolerance = 1e-3;
-constexpr int kDfsphMaxIterations = 100;
-// ... and its force condition dt <= kDfsphForceNumber sqrt(h / max |a|) (a: the forces but
+// Divergence-free SPH (solver "dfsph"): its CFL number, tolerances and sweep limit are the
+// scene's "dfsph" settings (scene/scene.h); its force condition dt <= kDfsphForceNumber
+// sqrt(h / max |a|) (a: the forces but
 // pressure): measured on a tank at rest (0.2 m deep, d = 0.01 m), 0.25 (WCSPH's) let the solves'
 // linear prediction fail (compression past 50% in 0.03 s); 0.1 holds it (RMS speed 0.04 m/s).
 constexpr double kDfsphForceNumber = 0.1;
@@ -439,7 +434,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     const double cfl = deltaModel ? kDeltaSphCfl : 0.4;
     // DFSPH: no speed of sound; the CFL condition on the flow's speed alone.
     double dtCfl =
-        dfsph ? kDfsphCfl * d / report.expectedSpeed : cfl * h / (c + report.expectedSpeed);
+        dfsph ? scene.dfsph.cfl * d / report.expectedSpeed : cfl * h / (c + report.expectedSpeed);
     const double viscousLength = deltaModel ? halfH : h;
     double dtViscous = nu > 0 ? 0.125 * viscousLength * viscousLength / nu : 1e300;
     double dtForce = g > 0 ? (dfsph ? kDfsphForceNumber : 0.25) * std::sqrt(h / g) : 1e300;
@@ -472,15 +467,19 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     dt = report.frameInterval / report.stepsPerFrame;
     report.frames = std::int64_t(std::floor(scene.duration * scene.frameRate + 1e-9));
     if (dfsph) {
+        const Scene::DfsphSettings& settings = scene.dfsph;
         say("pressure solver dfsph (Bender & Koschier 2017): incompressible, no speed of sound "
-            "(the stiffness above is unused); each step a divergence-free solve (mean " +
-            fmt(100 * kDfsphDivergenceTolerance) +
-            "% of rho0 per step) and a constant-density solve (mean density error under " +
-            fmt(100 * kDfsphDensityTolerance) + "%), at most " +
-            std::to_string(kDfsphMaxIterations) + " Jacobi sweeps each");
+            "(the stiffness above is unused); each step " +
+            (settings.divergenceErrorPercent > 0
+                 ? "a divergence-free solve (mean " + fmt(settings.divergenceErrorPercent) +
+                       "% of rho0 per step) and "
+                 : std::string("no divergence-free solve (dfsph.divergenceError 0) and ")) +
+            "a constant-density solve (mean density error under " +
+            fmt(scene.dfsph.densityErrorPercent) + "%), at most " +
+            std::to_string(scene.dfsph.maxSweeps) + " Jacobi sweeps each (scene \"dfsph\")");
     }
     if (adaptive && dfsph) {
-        say("time step adaptive, recomputed every step on the device: min(" + fmt(kDfsphCfl) +
+        say("time step adaptive, recomputed every step on the device: min(" + fmt(scene.dfsph.cfl) +
             " d / max(max|v|, " + fmt(report.expectedSpeed) + " m/s), " + fmt(kDfsphForceNumber) +
             " sqrt(h / max|a|), 0.125 (h/2)^2 / nu = " + fmt(dtViscous) +
             " s), the last step before each frame cut to land on it; about " + fmt(dt) + " s (" +
@@ -567,10 +566,10 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         p.cflNumber = Real(cfl);
         if (dfsph) {
             p.speedOfSound = 0;  // dt <= cflNumber h / max |v| (physics/time_step.h)
-            p.cflNumber = Real(kDfsphCfl * d / h);
-            p.densityTolerance = Real(kDfsphDensityTolerance);
-            p.divergenceTolerance = Real(kDfsphDivergenceTolerance);
-            p.maxSolverIterations = kDfsphMaxIterations;
+            p.cflNumber = Real(scene.dfsph.cfl * d / h);
+            p.densityTolerance = Real(scene.dfsph.densityErrorPercent / 100);
+            p.divergenceTolerance = Real(scene.dfsph.divergenceErrorPercent / 100);
+            p.maxSolverIterations = scene.dfsph.maxSweeps;
             // The solves predict the summed density's change by its rate: the rate takes the
             // gradient of the very kernel the density sums (no lattice-moment correction), so
             // that the prediction is that of the sum.

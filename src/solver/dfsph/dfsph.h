@@ -9,8 +9,11 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdlib>
+#include <string>
 
 #include "core/team.h"
+#include "grid/neighbour_list.h"
 #include "solver/dfsph/dfsph_stages.h"
 #include "solver/pressure_solver.h"
 
@@ -39,7 +42,10 @@ class Dfsph final : public PressureSolver<Exec> {
         for (int k = 0; k < 2; ++k) {
             warm_[k].swap(warmNext_[k]);
         }
-        s.search.visit(s.store.pos(), s.store.count(), [&](const auto& nb) {
+        s.search.visit(s.store.pos(), s.store.count(), [&](const auto& grid) {
+            // The positions stay put until the move: one walk of the grid lists the neighbours
+            // that every later pass, the solves' sweeps above all, reads.
+            const auto nb = neighbours(s, grid, listed_);
             densityAndFactor(s, nb);
             wallVelocities(s, nb);
             solve(s, nb, s.store.vel(), true);
@@ -59,7 +65,7 @@ class Dfsph final : public PressureSolver<Exec> {
             warm_[k].swap(warmNext_[k]);
         }
         s.search.visit(s.store.pos(), s.store.count(),
-                       [&](const auto& nb) { densityAndFactor(s, nb); });
+                       [&](const auto& grid) { densityAndFactor(s, neighbours(s, grid, false)); });
     }
 
     // Stage benchmarks: the grid, the density and factor pass, the non-pressure forces with one
@@ -71,11 +77,13 @@ class Dfsph final : public PressureSolver<Exec> {
                 s.search.update(s.exec, s.store, [] WEIR_HD() {});
                 break;
             case Stage::Density:
-                s.search.visit(s.store.pos(), s.store.count(),
-                               [&](const auto& nb) { densityAndFactor(s, nb); });
+                s.search.visit(s.store.pos(), s.store.count(), [&](const auto& grid) {
+                    densityAndFactor(s, neighbours(s, grid, listed_));
+                });
                 break;
             case Stage::Force:
-                s.search.visit(s.store.pos(), s.store.count(), [&](const auto& nb) {
+                s.search.visit(s.store.pos(), s.store.count(), [&](const auto& grid) {
+                    const auto nb = neighbours(s, grid, listed_);
                     nonPressure(s, nb);
                     solve(s, nb, s.store.nextVel(), false, 1);
                 });
@@ -91,7 +99,8 @@ class Dfsph final : public PressureSolver<Exec> {
     bool capturable() const override { return false; }
 
     std::size_t bytesHeld() const override {
-        return (factor_.size() + kappa_.size() + 2 * warm_[0].size() + 2 * warm_[1].size()) *
+        return list_.bytesHeld() +
+               (factor_.size() + kappaOverRho_.size() + 2 * warm_[0].size() + 2 * warm_[1].size()) *
                    sizeof(Real) +
                error_.size() * sizeof(float) + wallState_.size() * sizeof(Real4) +
                monitor_.size() * sizeof(DfsphMonitor);
@@ -191,7 +200,7 @@ class Dfsph final : public PressureSolver<Exec> {
         const StepClock* clock = s.clock;
         DfsphMonitor* monitor = monitor_.data() + (divergence ? 1 : 0);
         const Real* factor = factor_.data();
-        Real* kappa = kappa_.data();
+        Real* kappaOverRho = kappaOverRho_.data();
         float* error = error_.data();
         const Index n = pv.count;
         const Real tolerance = divergence ? params.divergenceTolerance : params.densityTolerance;
@@ -201,23 +210,24 @@ class Dfsph final : public PressureSolver<Exec> {
         const Real share = divergence ? kDivergenceWarmShare : kDensityWarmShare;
         s.exec.forEach(1, [=] WEIR_HD(Index) { dfsphBeginSolve(monitor, clock); });
         s.exec.forEach(n, [=] WEIR_HD(Index i) {
-            dfsphWarmStartAt(i, pv, nb, params, vel, divergence, share, clock, kappa, accumulated);
+            dfsphWarmStartAt(i, pv, nb, params, vel, divergence, share, clock, kappaOverRho,
+                             accumulated);
         });
         if (share > Real(0)) {
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
-                dfsphUpdateAt(i, pv, nb, params, vel, kappa, clock, monitor);
+                dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor);
             });
         }
         for (int sweep = 0; sweep <= maximum; ++sweep) {
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
-                dfsphPredictAt(i, pv, nb, params, vel, factor, divergence, clock, monitor, kappa,
-                               error, accumulated);
+                dfsphPredictAt(i, pv, nb, params, vel, factor, divergence, clock, monitor,
+                               kappaOverRho, error, accumulated);
             });
             s.exec.sum(error, n, &monitor->errorSum);
             s.exec.forEach(
                 1, [=] WEIR_HD(Index) { dfsphCheck(monitor, n, tolerance, minimum, maximum); });
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
-                dfsphUpdateAt(i, pv, nb, params, vel, kappa, clock, monitor);
+                dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor);
             });
             const bool poll = !Exec::isDevice || (sweep >= minimum && sweep % 2 == 0);
             if (poll && s.exec.readOne(monitor_, divergence ? 1 : 0).done != 0) {
@@ -247,6 +257,14 @@ class Dfsph final : public PressureSolver<Exec> {
     }
 
    private:
+    // The neighbours of the current positions: listed (grid/neighbour_list.h) or the grid's walk.
+    // Both give the stages one type, so each stage is compiled once per neighbour mode.
+    template <class Grid>
+    auto neighbours(Context& s, const Grid& grid, bool listed) {
+        return list_.build(s.exec, grid, s.store.pos(), s.store.count(), s.params.wendland.h2,
+                           listed);
+    }
+
     // Sizes the method's arrays to the particle count (no allocation unless it grew).
     void fit(Context& s) {
         const std::size_t n = std::size_t(s.store.count());
@@ -257,15 +275,30 @@ class Dfsph final : public PressureSolver<Exec> {
             }
         }
         factor_.resize(n);
-        kappa_.resize(n);
+        kappaOverRho_.resize(n);
         error_.resize(n);
         if (s.params.walls == WallKind::Particles && s.params.noSlip) {
             wallState_.resize(std::size_t(s.boundary.count));
+        }
+        if (!listDecided_) {
+            listed_ = listFits(s.exec, n);
+            listDecided_ = true;
         }
         if (monitor_.size() < 2) {
             const DfsphMonitor zero[2] = {};
             s.exec.upload(monitor_, zero, 2);
         }
+    }
+
+    // Whether n particles' neighbour lists fit in a quarter of the backend's free memory (the
+    // rest is left to frames, meshes and the viewer); WEIR_NEIGHBOUR_LISTS=0 turns them off (for
+    // benchmarks that compare).
+    static bool listFits(Exec& exec, std::size_t n) {
+        const char* setting = std::getenv("WEIR_NEIGHBOUR_LISTS");
+        if (setting != nullptr && std::string(setting) == "0") {
+            return false;
+        }
+        return n * NeighbourList<Exec>::bytesPerParticle() < exec.freeMemoryBytes() / 4;
     }
 
     ParticleView view(Context& s) {
@@ -282,10 +315,14 @@ class Dfsph final : public PressureSolver<Exec> {
                             // [1] divergence solve (the warm start)
     Buffer<Real> warmNext_[2];      // the same in the grid build's new order
     Buffer<Real> factor_;           // alpha_i of this step
-    Buffer<Real> kappa_;            // the current sweep's stiffness kappa_i = p_i / rho_i
+    Buffer<Real> kappaOverRho_;     // the current sweep's stiffness over density, kappa_i / rho_i
+                                    // (kappa_i = p_i / rho_i)
     Buffer<float> error_;           // the current sweep's per-particle error, for the sum
     Buffer<Real4> wallState_;       // no-slip walls: each boundary particle's mirrored velocity
     Buffer<DfsphMonitor> monitor_;  // [0] the density solve, [1] the divergence solve
+    NeighbourList<Exec> list_;      // this step's neighbours, when listed_
+    bool listed_ = false;           // whether the neighbours are listed (memory allowing)
+    bool listDecided_ = false;
 };
 
 }  // namespace weir

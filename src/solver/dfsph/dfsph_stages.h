@@ -210,16 +210,16 @@ WEIR_HD inline Real dfsphExcess(Index i, const ParticleView& pv, const Neighbour
 }
 
 // One sweep's prediction for particle i: kappa_i = excess alpha_i / dt^2, which one velocity
-// update would need to remove the excess; error gets excess / rho0 for the mean; accumulated sums
-// the solve's stiffness for the next step's warm start, in the form that does not depend on dt:
-// kappa itself for the density solve (a steady pressure field p = rho kappa holds whatever the
-// step), kappa dt for the divergence solve (the velocity it removes, dt kappa / h, does not
-// depend on dt). Nothing once the solve is done.
+// update would need to remove the excess, kept as kappa_i / rho_i (what the update reads); error
+// gets excess / rho0 for the mean; accumulated sums the solve's stiffness for the next step's warm
+// start, in the form that does not depend on dt: kappa itself for the density solve (a steady
+// pressure field p = rho kappa holds whatever the step), kappa dt for the divergence solve (the
+// velocity it removes, dt kappa / h, does not depend on dt). Nothing once the solve is done.
 template <class Neighbours>
 WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                    const SphParams& p, const Real4* vel, const Real* factor,
                                    bool divergence, const StepClock* clock,
-                                   const DfsphMonitor* monitor, Real* kappa, float* error,
+                                   const DfsphMonitor* monitor, Real* kappaOverRho, float* error,
                                    Real* accumulated) {
     if (monitor->done != 0) {
         return;
@@ -227,7 +227,7 @@ WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighb
     const Real dt = clock->dt;
     const Real excess = dfsphExcess(i, pv, nb, p, vel, divergence, dt);
     const Real k = excess * factor[i] / (dt * dt);
-    kappa[i] = k;
+    kappaOverRho[i] = k * reciprocal(vel[i].w);
     error[i] = float(excess * p.invRestDensity);
     accumulated[i] += divergence ? k * dt : k;
 }
@@ -239,7 +239,7 @@ WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighb
 template <class Neighbours>
 WEIR_HD inline void dfsphWarmStartAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                      const SphParams& p, const Real4* vel, bool divergence,
-                                     Real share, const StepClock* clock, Real* kappa,
+                                     Real share, const StepClock* clock, Real* kappaOverRho,
                                      Real* accumulated) {
     const Real dt = clock->dt;
     if (dt == Real(0)) {
@@ -248,7 +248,7 @@ WEIR_HD inline void dfsphWarmStartAt(Index i, const ParticleView& pv, const Neig
     const Real warm = accumulated[i];
     const bool compressed = dfsphExcess(i, pv, nb, p, vel, divergence, dt) > Real(0);
     const Real start = compressed && warm > Real(0) ? share * warm : Real(0);
-    kappa[i] = divergence ? start / dt : start;
+    kappaOverRho[i] = (divergence ? start / dt : start) * reciprocal(vel[i].w);
     accumulated[i] = start;
 }
 
@@ -282,27 +282,27 @@ WEIR_HD inline void dfsphBeginSolve(DfsphMonitor* monitor, const StepClock* cloc
 }
 
 // The velocity update of one iteration for particle i: v_i -= dt (sum_j m_j (kappa_i / rho_i +
-// kappa_j / rho_j) grad W_ij + sum_b psi_b kappa_i / rho_i grad W_ib). Velocities are updated in
-// place: this pass reads only positions, densities and stiffnesses of others. accumulated (if
+// kappa_j / rho_j) grad W_ij + sum_b psi_b kappa_i / rho_i grad W_ib), from each particle's
+// kappa / rho. Velocities are updated in place: this pass reads only positions and the kappa /
+// rho of others. accumulated (if
 // not null) sums each particle's stiffness over the solve's iterations (the next step's warm
 // start).
 template <class Neighbours>
 WEIR_HD inline void dfsphUpdateAt(Index i, const ParticleView& pv, const Neighbours& nb,
-                                  const SphParams& p, Real4* vel, const Real* kappa,
+                                  const SphParams& p, Real4* vel, const Real* kappaOverRho,
                                   const StepClock* clock, const DfsphMonitor* monitor) {
     if (monitor->done != 0) {
         return;
     }
     const Vec3 xi = pv.position(i);
     const Real4 v4 = vel[i];
-    const Real termI = kappa[i] * reciprocal(v4.w), h2 = p.wendland.h2;
+    const Real termI = kappaOverRho[i], h2 = p.wendland.h2;
     Vec3 acc;
     nb.forEachCandidate(i, [&](Index j) {
         const Vec3 rVec = xi - pv.position(j);
         const Real r2 = lengthSquared(rVec);
         if (r2 < h2 && r2 > Real(0)) {
-            const Real termJ = kappa[j] * reciprocal(vel[j].w);
-            const Real sum = termI + termJ;
+            const Real sum = termI + kappaOverRho[j];
             if (sum != Real(0)) {
                 const Real r = r2 * reciprocalSqrt(r2);
                 acc += rVec * (-p.mass * sum * p.wendland.gradientFactor(r));

@@ -157,6 +157,35 @@ TEST(Dfsph, DamBreakHoldsDensityAndAgreesWithWcsph) {
     EXPECT_NEAR(centre(a, a.y), centre(b, b.y), 3 * d);
 }
 
+// The scene's "dfsph" settings reach the solver: tolerances in percent, the sweep limit, the CFL
+// number on d; divergenceError 0 drops the divergence-free solve.
+TEST(Dfsph, SceneSettingsReachTheSolver) {
+    const std::string body = R"(
+        "container": {"min": [0, 0, 0], "max": [0.2, 0.3, 0.1]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.2, 0.1]}],
+        "particles": {"spacing": 0.02})";
+    const SimulationSetup defaults = buildSetup(dfsphScene(body), {}, nullptr);
+    EXPECT_NEAR(double(defaults.params.densityTolerance), 1e-4, 1e-9);
+    EXPECT_NEAR(double(defaults.params.divergenceTolerance), 1e-3, 1e-9);
+    EXPECT_EQ(defaults.params.maxSolverIterations, 100);
+    const SimulationSetup set = buildSetup(
+        dfsphScene(body + R"(, "dfsph": {"densityError": 0.05, "divergenceError": 0,
+                                         "maxSweeps": 40, "cfl": 0.2})"),
+        {}, nullptr);
+    EXPECT_NEAR(double(set.params.densityTolerance), 5e-4, 1e-9);
+    EXPECT_EQ(double(set.params.divergenceTolerance), 0.0);
+    EXPECT_EQ(set.params.maxSolverIterations, 40);
+    EXPECT_NEAR(double(set.params.cflNumber), 0.5 * double(defaults.params.cflNumber), 1e-6);
+    // No divergence-free solve: its report stays empty while the density solve runs.
+    auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, set);
+    sim->computeDensity();
+    sim->advance(3);
+    const SolverReport report = sim->takeSolverReport();
+    EXPECT_EQ(report.divergence.solves, 0);
+    EXPECT_EQ(report.density.solves, 3);
+    EXPECT_LE(report.density.maxIterations, 40);
+}
+
 TEST(Dfsph, UnsupportedCombinationsFailNamingTheField) {
     const std::string body = R"(
         "container": {"min": [0, 0, 0], "max": [0.2, 0.3, 0.1]},
