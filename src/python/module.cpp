@@ -36,6 +36,10 @@ NB_MODULE(_weir, m) {
         "The simulation blew up; the message is the diagnosis (step, time, particle, "
         "likely cause), as weir run prints it.";
 
+    nb::exception<BusyError>(m, "BusyError", PyExc_RuntimeError).doc() =
+        "A call on a simulation that another thread is stepping (or reading): one call "
+        "at a time on one simulation.";
+
     m.def("frame_formats", &frameFormatNames,
           "The particle frame formats, as weir run --format names them (the first is the "
           "default).");

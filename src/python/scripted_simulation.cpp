@@ -31,7 +31,21 @@ ScriptedSimulation::ScriptedSimulation(const Scene& scene, const ScriptedOptions
     sim_->computeDensity();  // frame 0's density and pressure, as `weir run` writes them
 }
 
+ScriptedSimulation::Busy::Busy(ScriptedSimulation& s) : flag_(s.busy_) {
+    if (flag_.exchange(true)) {
+        throw BusyError(
+            "the simulation is busy in another thread (a step, or reading its particles): one "
+            "call at a time on one simulation");
+    }
+}
+
+Simulation& ScriptedSimulation::simulation() {
+    Busy busy(*this);  // only checks: the caller's use is short and on this thread
+    return *sim_;
+}
+
 void ScriptedSimulation::step(std::int64_t steps) {
+    Busy busy(*this);
     if (steps < 0) {
         throw std::invalid_argument("step(n): n = " + std::to_string(steps) +
                                     " is not allowed; give n >= 0 steps");
@@ -47,6 +61,7 @@ void ScriptedSimulation::step(std::int64_t steps) {
 }
 
 void ScriptedSimulation::advanceTo(double time) {
+    Busy busy(*this);
     const double now = sim_->time();
     if (!std::isfinite(time) || time < now) {
         throw std::invalid_argument("advance_to(t): t = " + std::to_string(time) +
@@ -60,18 +75,28 @@ void ScriptedSimulation::advanceTo(double time) {
 }
 
 std::string ScriptedSimulation::faultText() {
+    Busy busy(*this);
+    return diagnosis();
+}
+
+std::string ScriptedSimulation::diagnosis() {
     const FaultRecord fault = sim_->fault();
     return fault.code == 0 ? std::string() : describeFault(fault, sim_->params());
 }
 
 void ScriptedSimulation::checkFault() {
-    const std::string text = faultText();
+    const std::string text = diagnosis();
     if (!text.empty()) {
         throw BlowUpError(text);
     }
 }
 
 const HostParticles& ScriptedSimulation::particles() {
+    Busy busy(*this);
+    return hostParticles();
+}
+
+const HostParticles& ScriptedSimulation::hostParticles() {
     if (hostVersion_ != version_ || viewsShared_) {
         sim_->download(host_);
         hostVersion_ = version_;
@@ -80,22 +105,25 @@ const HostParticles& ScriptedSimulation::particles() {
 }
 
 ParticleArrays ScriptedSimulation::deviceArrays() {
+    Busy busy(*this);
     sim_->synchronize();
     viewsShared_ = true;  // the caller may write to them: no host copy is current till a step
     return sim_->particleArrays();
 }
 
 TriangleMesh ScriptedSimulation::surface(Backend backend, SurfaceOptions options) {
+    Busy busy(*this);
     if (options.spacing == 0) {
         options.spacing = report_.spacing;  // one scale for every frame of the run, as weir run
     }
-    return reconstructSurface(backend, particles(), options);
+    return reconstructSurface(backend, hostParticles(), options);
 }
 
 void ScriptedSimulation::writeFrame(FrameWriter& writer, int index) {
+    Busy busy(*this);
     writer.setRecord(makeRunRecord(scene_.name, scene_.sourcePath, scene_.json,
                                    sim_->particleCount(), report_.spacing, WEIR_VERSION));
-    writer.write(index, sim_->time(), particles());
+    writer.write(index, sim_->time(), hostParticles());
 }
 
 }  // namespace weir

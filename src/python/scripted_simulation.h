@@ -3,6 +3,7 @@
 // the particles read back at most once per state. Plain C++: the bindings only convert.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -22,6 +23,13 @@ namespace weir {
 // The simulation blew up; the message is describeFault's diagnosis (what `weir run` prints
 // before it exits with code 3).
 class BlowUpError : public std::runtime_error {
+   public:
+    using std::runtime_error::runtime_error;
+};
+
+// A call on a simulation that another thread is stepping (stepping releases the GIL): one call
+// at a time, else the engine's buffers would be read while they are rewritten.
+class BusyError : public std::runtime_error {
    public:
     using std::runtime_error::runtime_error;
 };
@@ -47,7 +55,8 @@ class ScriptedSimulation {
     // Steps until the simulated time is `time` (not before the current time, else
     // std::invalid_argument); BlowUpError on a fault.
     void advanceTo(double time);
-    // The first fault's diagnosis, "" while there is none.
+    // The first fault's diagnosis, "" while there is none. Every call below, and simulation(),
+    // throws BusyError while another thread is in one of them on this simulation.
     std::string faultText();
 
     // The particles in their original order (index = id), with pressure from the density;
@@ -66,12 +75,26 @@ class ScriptedSimulation {
     const Scene& scene() const { return scene_; }
     const SetupReport& report() const { return report_; }
     NeighbourMode neighbourMode() const { return mode_; }
-    Simulation& simulation() { return *sim_; }
+    // The engine's simulation; throws BusyError while another thread steps this one.
+    Simulation& simulation();
     // Bumped by every step: a consumer's copy of the particles is stale when it differs.
     std::uint64_t stateVersion() const { return version_; }
 
    private:
+    // Marks the simulation busy for one call; BusyError if it already is.
+    class Busy {
+       public:
+        explicit Busy(ScriptedSimulation& s);
+        ~Busy() { flag_ = false; }
+        Busy(const Busy&) = delete;
+        Busy& operator=(const Busy&) = delete;
+
+       private:
+        std::atomic<bool>& flag_;
+    };
     void checkFault();
+    std::string diagnosis();               // faultText() without the busy check
+    const HostParticles& hostParticles();  // particles() without the busy check
 
     Scene scene_;
     SetupReport report_;
@@ -81,6 +104,7 @@ class ScriptedSimulation {
     std::uint64_t version_ = 0;
     std::uint64_t hostVersion_ = ~std::uint64_t(0);
     bool viewsShared_ = false;  // particle views handed out since the last step
+    std::atomic<bool> busy_{false};
 };
 
 }  // namespace weir

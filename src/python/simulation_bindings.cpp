@@ -317,7 +317,8 @@ void bindSimulation(nb::module_& m) {
         m, "Simulation",
         "A simulation of a scene, set up as weir run sets it up (the same derived parameters, "
         "checks and errors). Stepping releases the GIL; a blow-up raises BlowUpError with the "
-        "diagnosis. Not safe to use from two threads at once.")
+        "diagnosis. One call at a time: a call from another thread while one steps raises "
+        "BusyError.")
         .def(
             "__init__",
             [](ScriptedSimulation* self, nb::handle scene, const std::string& backend,

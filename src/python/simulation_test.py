@@ -224,3 +224,43 @@ def test_stepping_releases_the_gil():
     # still in Python (a few switch intervals of 5 ms); released, it counts all along.
     assert sim.step_count == 151
     assert counted > 100_000, counted
+
+
+def test_a_second_thread_is_refused_while_one_steps():
+    sim = weir.Simulation("dam_break", backend="cpu", particles=3000)
+    started, failed = threading.Event(), []
+
+    def work():
+        started.set()
+        while True:
+            try:
+                sim.step(300)
+                return
+            except weir.BusyError:
+                continue  # the main thread's read was in first: it is short
+            except Exception as e:  # noqa: BLE001 - reported below
+                failed.append(e)
+                return
+
+    worker = threading.Thread(target=work)
+    worker.start()
+    started.wait()
+    refused, stepped = [], 0
+    while worker.is_alive():
+        for read in (lambda: sim.time, sim.positions):
+            try:
+                read()
+            except weir.BusyError as e:
+                refused.append(str(e))
+        if not refused:
+            continue  # the worker may not have begun: no step from here before it has
+        try:
+            sim.step(1)
+            stepped += 1  # the worker had just finished (before is_alive said so)
+        except weir.BusyError as e:
+            refused.append(str(e))
+    worker.join()
+    assert not failed, failed
+    assert refused and "another thread" in refused[0]
+    assert sim.step_count == 300 + stepped  # every step taken once, none lost or doubled
+    assert sim.positions().shape == (sim.particle_count, 3)  # free again

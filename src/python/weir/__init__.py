@@ -18,6 +18,7 @@ _os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 
 from ._weir import (  # noqa: E402
     BlowUpError,
+    BusyError,
     FrameWriter,
     IoError,
     Mesh,
@@ -38,6 +39,7 @@ from ._weir import (  # noqa: E402
 
 __all__ = [
     "BlowUpError",
+    "BusyError",
     "FrameWriter",
     "IoError",
     "Mesh",

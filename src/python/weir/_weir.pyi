@@ -29,6 +29,11 @@ class BlowUpError(RuntimeError):
     The simulation blew up; the message is the diagnosis (step, time, particle, likely cause), as weir run prints it.
     """
 
+class BusyError(RuntimeError):
+    """
+    A call on a simulation that another thread is stepping (or reading): one call at a time on one simulation.
+    """
+
 def frame_formats() -> list[str]:
     """
     The particle frame formats, as weir run --format names them (the first is the default).
@@ -221,7 +226,7 @@ class FrameWriter:
 
 class Simulation:
     """
-    A simulation of a scene, set up as weir run sets it up (the same derived parameters, checks and errors). Stepping releases the GIL; a blow-up raises BlowUpError with the diagnosis. Not safe to use from two threads at once.
+    A simulation of a scene, set up as weir run sets it up (the same derived parameters, checks and errors). Stepping releases the GIL; a blow-up raises BlowUpError with the diagnosis. One call at a time: a call from another thread while one steps raises BusyError.
     """
 
     def __init__(self, scene: Scene | str | os.PathLike[str] | dict[str, Any], *, backend: str = 'auto', solver: str | None = None, model: str | None = None, particles: int | None = None, neighbours: str = 'auto', overrides: dict[str, Any] | str | None = None) -> None:
