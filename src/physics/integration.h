@@ -15,10 +15,13 @@ namespace weir {
 
 // Time integration of one particle over the clock's dt (semi-implicit Euler by default; the
 // paper's explicit Euler selectable), collision response, the blow-up checks, and the largest
-// speed and acceleration for the next step's dt; updates x and v in place.
+// speed and acceleration for the next step's dt; updates x and v in place. A method whose
+// pressure is implicit (DFSPH) passes recordAcceleration false and records its explicit forces
+// itself: its dt must not shrink with the pressure it solves for.
 WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
                                     const SphParams& params, const ObstacleView& obstacles,
-                                    FaultRecord* fault, StepClock* clock) {
+                                    FaultRecord* fault, StepClock* clock,
+                                    bool recordAcceleration = true) {
     const Real dt = clock->dt;
     if (params.integrator == IntegratorKind::SemiImplicitEuler) {
         v += a * dt;
@@ -34,7 +37,9 @@ WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
 
     const Real speed2 = lengthSquared(v);
     recordMax(&clock->maxSpeed2, speed2);
-    recordMax(&clock->maxAccel2, lengthSquared(a));
+    if (recordAcceleration) {
+        recordMax(&clock->maxAccel2, lengthSquared(a));
+    }
     const bool finite =
         std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(speed2);
     FaultCode code = FaultCode::None;

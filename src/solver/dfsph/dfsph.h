@@ -210,8 +210,7 @@ class Dfsph final : public PressureSolver<Exec> {
         const Real share = divergence ? kDivergenceWarmShare : kDensityWarmShare;
         s.exec.forEach(1, [=] WEIR_HD(Index) { dfsphBeginSolve(monitor, clock); });
         s.exec.forEach(n, [=] WEIR_HD(Index i) {
-            dfsphWarmStartAt(i, pv, nb, params, vel, divergence, share, clock, kappaOverRho,
-                             accumulated);
+            dfsphWarmStartAt(i, vel, divergence, share, clock, kappaOverRho, accumulated);
         });
         if (share > Real(0)) {
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
@@ -308,8 +307,8 @@ class Dfsph final : public PressureSolver<Exec> {
     }
 
     // The share of the last step's summed stiffness a solve starts from.
-    static constexpr Real kDensityWarmShare = Real(0.5);
-    static constexpr Real kDivergenceWarmShare = Real(0.5);
+    static constexpr Real kDensityWarmShare = Real(1);
+    static constexpr Real kDivergenceWarmShare = Real(1);
 
     Buffer<Real> warm_[2];  // per particle, the stiffness summed by the last step's [0] density,
                             // [1] divergence solve (the warm start)

@@ -192,27 +192,31 @@ WEIR_HD inline Real dfsphDensityRate(Index i, const ParticleView& pv, const Neig
 
 // The error a solve removes at particle i under velocities `vel` (w: the density), kg/m^3 over
 // the step: the density solve (divergence false) the density predicted at the step's end, rho_i +
-// dt drho_i/dt, over rho0; the divergence solve dt drho_i/dt where it compresses (none at a free
-// surface, fewer than kDfsphDivergenceNeighbours). Never negative: a fluid pushes, it does not
-// pull, so expansion is left alone.
+// dt drho_i/dt, less rho0; the divergence solve dt drho_i/dt (none at a free surface, fewer than
+// kDfsphDivergenceNeighbours). Negative where the fluid expands.
 template <class Neighbours>
 WEIR_HD inline Real dfsphExcess(Index i, const ParticleView& pv, const Neighbours& nb,
                                 const SphParams& p, const Real4* vel, bool divergence, Real dt) {
     int neighbours = 0;
     const Real rate = dfsphDensityRate(i, pv, nb, p, vel, neighbours);
-    Real excess;
     if (divergence) {
-        excess = neighbours >= kDfsphDivergenceNeighbours ? rate * dt : Real(0);
-    } else {
-        excess = vel[i].w + dt * rate - p.restDensity;
+        return neighbours >= kDfsphDivergenceNeighbours ? rate * dt : Real(0);
     }
-    return excess > Real(0) ? excess : Real(0);
+    return vel[i].w + dt * rate - p.restDensity;
 }
 
-// One sweep's prediction for particle i: kappa_i = excess alpha_i / dt^2, which one velocity
-// update would need to remove the excess, kept as kappa_i / rho_i (what the update reads); error
-// gets excess / rho0 for the mean; accumulated sums the solve's stiffness for the next step's warm
-// start, in the form that does not depend on dt: kappa itself for the density solve (a steady
+// The share of a stiffness given back in one sweep (below).
+constexpr Real kDfsphReleaseRelaxation = Real(0.5);
+
+// One sweep's prediction for particle i: the stiffness change kappa = excess alpha_i / dt^2 that
+// one velocity update would need to remove the excess, kept as kappa / rho_i (what the update
+// reads). A fluid pushes, it does not pull: the stiffness the solve has summed for i (with the
+// warm start) never goes below zero, so where i expands it gives back what it holds, and no more
+// (a projected Jacobi sweep). Given back at half the rate: at the full rate the sweeps overshoot
+// both ways and grow (measured: a tank at rest blew up in its first step). The error for the mean
+// is |excess| / rho0 where i holds a stiffness, the compression alone where it holds none (a free
+// surface, light by summation, is no error). accumulated keeps the sum for the next step's warm
+// start, in a form that does not depend on dt: kappa itself for the density solve (a steady
 // pressure field p = rho kappa holds whatever the step), kappa dt for the divergence solve (the
 // velocity it removes, dt kappa / h, does not depend on dt). Nothing once the solve is done.
 template <class Neighbours>
@@ -226,28 +230,35 @@ WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighb
     }
     const Real dt = clock->dt;
     const Real excess = dfsphExcess(i, pv, nb, p, vel, divergence, dt);
-    const Real k = excess * factor[i] / (dt * dt);
+    Real k = excess * factor[i] / (dt * dt);
+    k = excess < Real(0) ? k * kDfsphReleaseRelaxation : k;
+    const Real before = accumulated[i];
+    Real stored = divergence ? k * dt : k;
+    if (before + stored < Real(0)) {
+        stored = -before;
+        k = divergence ? stored / dt : stored;
+    }
+    const Real after = before + stored;
+    accumulated[i] = after;
     kappaOverRho[i] = k * reciprocal(vel[i].w);
-    error[i] = float(excess * p.invRestDensity);
-    accumulated[i] += divergence ? k * dt : k;
+    const Real counted = after > Real(0) ? fabs(excess) : (excess > Real(0) ? excess : Real(0));
+    error[i] = float(counted * p.invRestDensity);
 }
 
-// Before a solve's sweeps, its warm start (Bender & Koschier 2017): where the particle is
-// compressed already, a share of the stiffness the last step's solve summed to (in the form
-// dfsphPredictAt keeps), applied as a first velocity update; the sum restarts from it. Nowhere
-// else: a push where nothing compresses would part the fluid, and nothing pulls it back.
-template <class Neighbours>
-WEIR_HD inline void dfsphWarmStartAt(Index i, const ParticleView& pv, const Neighbours& nb,
-                                     const SphParams& p, const Real4* vel, bool divergence,
-                                     Real share, const StepClock* clock, Real* kappaOverRho,
+// Before a solve's sweeps, its warm start (Bender & Koschier 2017): the stiffness i's last solve
+// summed to (in the form dfsphPredictAt keeps), whole, applied as a first velocity update; the
+// sum goes on from it. In a steady flow it is the answer, and the sweeps give back what the flow
+// no longer needs. (Half of it, only where compressed, as SPlisHSPlasH starts, took 23-32 sweeps a
+// step on a 1M dam break on the H200 against 2: each step rebuilt half the column's pressure.)
+WEIR_HD inline void dfsphWarmStartAt(Index i, const Real4* vel, bool divergence, Real share,
+                                     const StepClock* clock, Real* kappaOverRho,
                                      Real* accumulated) {
     const Real dt = clock->dt;
     if (dt == Real(0)) {
         return;
     }
     const Real warm = accumulated[i];
-    const bool compressed = dfsphExcess(i, pv, nb, p, vel, divergence, dt) > Real(0);
-    const Real start = compressed && warm > Real(0) ? share * warm : Real(0);
+    const Real start = warm > Real(0) ? share * warm : Real(0);
     kappaOverRho[i] = (divergence ? start / dt : start) * reciprocal(vel[i].w);
     accumulated[i] = start;
 }
@@ -337,7 +348,10 @@ WEIR_HD inline void dfsphAdvanceAt(Index i, const ParticleView& pv, const SphPar
     const Vec3 a = (v - start.xyz()) * reciprocal(clock->dt);
     // advanceParticle applies v += a dt, x += v dt: the solved velocity and the move by it.
     Vec3 vStart = start.xyz();
-    advanceParticle(x, vStart, a, i, p, obstacles, fault, clock);
+    // The force condition sees the non-pressure forces only (dfsphNonPressureAt records them):
+    // the pressure is solved for, whatever dt. Counting it too cut a 30k dam break's steps by
+    // pressure spikes at the walls to 0.8x the CFL step.
+    advanceParticle(x, vStart, a, i, p, obstacles, fault, clock, false);
     checkDensity(start.w, false, i, p, fault, clock);
     newPos[i] = Real4::from(x, pv.pos[i].w);
     newVel[i] = Real4::from(vStart, start.w);
