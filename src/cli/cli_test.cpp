@@ -495,6 +495,37 @@ TEST_F(Cli, LongContainerRunsOnTheGridWithWideCellIds) {
     EXPECT_GT(fell, 0.0);
 }
 
+// Each solver's time to solution: wall seconds per simulated second, and DFSPH's own stages (the
+// neighbour list and both solves) timed beside the paper's.
+TEST_F(Cli, BenchGivesEachSolversTimePerSimulatedSecond) {
+    double perSimulated[2] = {0, 0};
+    int k = 0;
+    for (const char* solver : {"wcsph", "dfsph"}) {
+        const std::string out = std::string("b-") + solver;
+        RunResult run = weir("bench --model delta-sph --solver " + std::string(solver) +
+                             " --sizes 1000 --steps 3 --warmup 1 --settle 0.01 --budget 60 "
+                             "--backends cpu-dense --no-plot --no-render --out " +
+                             out);
+        ASSERT_EQ(run.exitCode, 0) << run.output;
+        EXPECT_TRUE(contains(run.output, "Wall s per simulated s")) << run.output;
+        std::ifstream in(path(out + "/bench.json"));
+        nlohmann::json record = nlohmann::json::parse(in);
+        EXPECT_EQ(record["solver"], solver);
+        const auto& c = record["runs"][0]["columns"]["cpu-dense"];
+        ASSERT_TRUE(c.contains("wallSecondsPerSimulatedSecond")) << c.dump();
+        perSimulated[k++] = c["wallSecondsPerSimulatedSecond"].get<double>();
+        if (std::string(solver) == "dfsph") {
+            for (const char* stage : {"neighbour list", "divergence", "pressure"}) {
+                ASSERT_TRUE(c["stages"].contains(stage)) << stage << " " << c.dump();
+                EXPECT_GT(c["stages"][stage].get<double>(), 0.0) << stage;
+            }
+            EXPECT_TRUE(contains(run.output, "Constant-density solve")) << run.output;
+        }
+    }
+    EXPECT_GT(perSimulated[0], 0.0);
+    EXPECT_GT(perSimulated[1], 0.0);
+}
+
 TEST_F(Cli, BenchTimesEveryStageOfEveryColumn) {
     // A smoke test of `weir bench` at a tiny size: asserts that every stage was timed and the
     // files were written, not how fast anything is.

@@ -50,6 +50,7 @@ struct RunOptions {
 struct BenchOptions {
     std::string scene;              // file or built-in name; empty: dam break
     std::string model = "paper";    // fluid.model timed: the paper's, whatever the scene says
+    std::string solver;             // pressure solver timed; "" the scene's
     std::string sizes = "10k,50k";  // particle counts, k/M suffixes allowed
     std::string columns = "auto";   // cpu-brute,cpu-grid,...,cuda-dense or auto
     int steps = 20;                 // timed steps (median per stage)

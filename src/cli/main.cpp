@@ -185,6 +185,11 @@ int weirMain(int argc, char** argv) {
                      "as in its Tables 1-3) or delta-sph (weir's default model)")
         ->check(CLI::IsMember({"paper", "delta-sph"}))
         ->capture_default_str();
+    benchCmd
+        ->add_option("--solver", bench.solver,
+                     "Pressure solver timed: wcsph or dfsph (with --model delta-sph); default: "
+                     "the scene's \"solver\"")
+        ->check(CLI::IsMember({"wcsph", "dfsph"}));
     benchCmd->add_option("--sizes", bench.sizes, "Particle counts, e.g. 10k,50k,100k,1M,1e9")
         ->capture_default_str();
     benchCmd
