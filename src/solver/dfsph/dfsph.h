@@ -102,8 +102,8 @@ class Dfsph final : public PressureSolver<Exec> {
         return list_.bytesHeld() +
                (factor_.size() + kappaOverRho_.size() + 2 * warm_[0].size() + 2 * warm_[1].size()) *
                    sizeof(Real) +
-               error_.size() * sizeof(float) + wallState_.size() * sizeof(Real4) +
-               monitor_.size() * sizeof(DfsphMonitor);
+               error_.size() * sizeof(float) + interior_.size() +
+               wallState_.size() * sizeof(Real4) + monitor_.size() * sizeof(DfsphMonitor);
     }
 
     SolverReport takeReport(Exec& exec) override {
@@ -153,8 +153,10 @@ class Dfsph final : public PressureSolver<Exec> {
         const ParticleView pv = view(s);
         const SphParams params = s.params;
         Real* factor = factor_.data();
-        s.exec.forEach(pv.count,
-                       [=] WEIR_HD(Index i) { dfsphDensityFactorAt(i, pv, nb, params, factor); });
+        unsigned char* interior = interior_.data();
+        s.exec.forEach(pv.count, [=] WEIR_HD(Index i) {
+            dfsphDensityFactorAt(i, pv, nb, params, factor, interior);
+        });
         s.exec.stageEnd("density");
     }
 
@@ -207,10 +209,11 @@ class Dfsph final : public PressureSolver<Exec> {
         const int minimum = divergence ? 1 : 2;
         const int maximum = sweeps > 0 ? sweeps : params.maxSolverIterations;
         Real* accumulated = warm_[divergence ? 1 : 0].data();
+        const unsigned char* interior = interior_.data();
         const Real share = divergence ? kDivergenceWarmShare : kDensityWarmShare;
         s.exec.forEach(1, [=] WEIR_HD(Index) { dfsphBeginSolve(monitor, clock); });
         s.exec.forEach(n, [=] WEIR_HD(Index i) {
-            dfsphWarmStartAt(i, vel, divergence, share, clock, kappaOverRho, accumulated);
+            dfsphWarmStartAt(i, vel, divergence, share, clock, kappaOverRho, accumulated, interior);
         });
         if (share > Real(0)) {
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
@@ -220,7 +223,7 @@ class Dfsph final : public PressureSolver<Exec> {
         for (int sweep = 0; sweep <= maximum; ++sweep) {
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
                 dfsphPredictAt(i, pv, nb, params, vel, factor, divergence, clock, monitor,
-                               kappaOverRho, error, accumulated);
+                               kappaOverRho, error, accumulated, interior);
             });
             s.exec.sum(error, n, &monitor->errorSum);
             s.exec.forEach(
@@ -274,6 +277,7 @@ class Dfsph final : public PressureSolver<Exec> {
             }
         }
         factor_.resize(n);
+        interior_.resize(n);
         kappaOverRho_.resize(n);
         error_.resize(n);
         if (s.params.walls == WallKind::Particles && s.params.noSlip) {
@@ -312,15 +316,16 @@ class Dfsph final : public PressureSolver<Exec> {
 
     Buffer<Real> warm_[2];  // per particle, the stiffness summed by the last step's [0] density,
                             // [1] divergence solve (the warm start)
-    Buffer<Real> warmNext_[2];      // the same in the grid build's new order
-    Buffer<Real> factor_;           // alpha_i of this step
-    Buffer<Real> kappaOverRho_;     // the current sweep's stiffness over density, kappa_i / rho_i
-                                    // (kappa_i = p_i / rho_i)
-    Buffer<float> error_;           // the current sweep's per-particle error, for the sum
-    Buffer<Real4> wallState_;       // no-slip walls: each boundary particle's mirrored velocity
-    Buffer<DfsphMonitor> monitor_;  // [0] the density solve, [1] the divergence solve
-    NeighbourList<Exec> list_;      // this step's neighbours, when listed_
-    bool listed_ = false;           // whether the neighbours are listed (memory allowing)
+    Buffer<Real> warmNext_[2];        // the same in the grid build's new order
+    Buffer<Real> factor_;             // alpha_i of this step
+    Buffer<unsigned char> interior_;  // 1: inside the fluid this step, 0: at a free surface
+    Buffer<Real> kappaOverRho_;       // the current sweep's stiffness over density, kappa_i / rho_i
+                                      // (kappa_i = p_i / rho_i)
+    Buffer<float> error_;             // the current sweep's per-particle error, for the sum
+    Buffer<Real4> wallState_;         // no-slip walls: each boundary particle's mirrored velocity
+    Buffer<DfsphMonitor> monitor_;    // [0] the density solve, [1] the divergence solve
+    NeighbourList<Exec> list_;        // this step's neighbours, when listed_
+    bool listed_ = false;             // whether the neighbours are listed (memory allowing)
     bool listDecided_ = false;
 };
 

@@ -53,12 +53,14 @@ constexpr int kDfsphDivergenceNeighbours = 20;
 // (into vel.w) and its factor alpha_i (0 where it has no neighbour).
 template <class Neighbours>
 WEIR_HD inline void dfsphDensityFactorAt(Index i, const ParticleView& pv, const Neighbours& nb,
-                                         const SphParams& p, Real* factor) {
+                                         const SphParams& p, Real* factor,
+                                         unsigned char* interior) {
     const Vec3 xi = pv.position(i);
     const Real h2 = p.wendland.h2;
     Real rho = p.mass * p.wendland.value(Real(0));
     Vec3 gradSum, wallGradSum;
     Real gradSquares = 0;
+    int neighbours = 0;
     nb.forEachCandidate(i, [&](Index j) {
         const Vec3 rVec = xi - pv.position(j);
         const Real r2 = lengthSquared(rVec);
@@ -68,6 +70,7 @@ WEIR_HD inline void dfsphDensityFactorAt(Index i, const ParticleView& pv, const 
             const Vec3 g = rVec * (p.mass * p.wendland.gradientFactor(r));
             gradSum += g;
             gradSquares += lengthSquared(g);
+            ++neighbours;
         }
     });
     if (p.walls == WallKind::Particles) {
@@ -77,9 +80,11 @@ WEIR_HD inline void dfsphDensityFactorAt(Index i, const ParticleView& pv, const 
             const Real psi = bv.pos[b].w;
             rho += psi * p.wendland.value(r);
             wallGradSum += rVec * (psi * p.wendland.gradientFactor(r));
+            ++neighbours;
         });
     }
     pv.vel[i].w = rho;
+    interior[i] = neighbours >= kDfsphDivergenceNeighbours ? 1 : 0;
     // Measured: walls that push by twice i's stiffness (its pressure mirrored, with this factor
     // made consistent) supported the first step's floor layer better but stirred a tank at rest
     // ten times more within 0.5 s than walls that push by it once (Akinci et al. 2012, as
@@ -212,24 +217,28 @@ constexpr Real kDfsphReleaseRelaxation = Real(0.5);
 // one velocity update would need to remove the excess, kept as kappa / rho_i (what the update
 // reads). A fluid pushes, it does not pull: the stiffness the solve has summed for i (with the
 // warm start) never goes below zero, so where i expands it gives back what it holds, and no more
-// (a projected Jacobi sweep). Given back at half the rate: at the full rate the sweeps overshoot
-// both ways and grow (measured: a tank at rest blew up in its first step). The error for the mean
-// is |excess| / rho0 where i holds a stiffness, the compression alone where it holds none (a free
-// surface, light by summation, is no error). accumulated keeps the sum for the next step's warm
-// start, in a form that does not depend on dt: kappa itself for the density solve (a steady
-// pressure field p = rho kappa holds whatever the step), kappa dt for the divergence solve (the
-// velocity it removes, dt kappa / h, does not depend on dt). Nothing once the solve is done.
+// (a projected Jacobi sweep), inside the fluid only: at a free surface (fewer than
+// kDfsphDivergenceNeighbours neighbours) a light summed density is the kernel's deficit, not an
+// expansion, and nothing is given back or pulled. Given back at half the rate: at the full rate the
+// sweeps overshoot both ways and grow (measured: a tank at rest blew up in its first step). The
+// error for the mean is |excess| / rho0 where i holds a stiffness, the compression alone where it
+// holds none (a free surface, light by summation, is no error). accumulated keeps the sum for the
+// next step's warm start, in a form that does not depend on dt: kappa itself for the density solve
+// (a steady pressure field p = rho kappa holds whatever the step), kappa dt for the divergence
+// solve (the velocity it removes, dt kappa / h, does not depend on dt). Nothing once the solve is
+// done.
 template <class Neighbours>
 WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                    const SphParams& p, const Real4* vel, const Real* factor,
                                    bool divergence, const StepClock* clock,
                                    const DfsphMonitor* monitor, Real* kappaOverRho, float* error,
-                                   Real* accumulated) {
+                                   Real* accumulated, const unsigned char* interior) {
     if (monitor->done != 0) {
         return;
     }
     const Real dt = clock->dt;
-    const Real excess = dfsphExcess(i, pv, nb, p, vel, divergence, dt);
+    Real excess = dfsphExcess(i, pv, nb, p, vel, divergence, dt);
+    excess = interior[i] != 0 || excess > Real(0) ? excess : Real(0);
     Real k = excess * factor[i] / (dt * dt);
     k = excess < Real(0) ? k * kDfsphReleaseRelaxation : k;
     const Real before = accumulated[i];
@@ -248,17 +257,20 @@ WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighb
 // Before a solve's sweeps, its warm start (Bender & Koschier 2017): the stiffness i's last solve
 // summed to (in the form dfsphPredictAt keeps), whole, applied as a first velocity update; the
 // sum goes on from it. In a steady flow it is the answer, and the sweeps give back what the flow
-// no longer needs. (Half of it, only where compressed, as SPlisHSPlasH starts, took 23-32 sweeps a
-// step on a 1M dam break on the H200 against 2: each step rebuilt half the column's pressure.)
+// no longer needs. Only inside the fluid (at least kDfsphDivergenceNeighbours neighbours): at a
+// free surface or in spray the summed density reads light, the sweeps only push, and a warm start
+// would push on for as long as it is carried. (Half of it, only where compressed, as SPlisHSPlasH
+// starts, took 23-32 sweeps a step on a 1M dam break on the H200 against 2: each step rebuilt half
+// the column's pressure.)
 WEIR_HD inline void dfsphWarmStartAt(Index i, const Real4* vel, bool divergence, Real share,
-                                     const StepClock* clock, Real* kappaOverRho,
-                                     Real* accumulated) {
+                                     const StepClock* clock, Real* kappaOverRho, Real* accumulated,
+                                     const unsigned char* interior) {
     const Real dt = clock->dt;
     if (dt == Real(0)) {
         return;
     }
     const Real warm = accumulated[i];
-    const Real start = warm > Real(0) ? share * warm : Real(0);
+    const Real start = warm > Real(0) && interior[i] != 0 ? share * warm : Real(0);
     kappaOverRho[i] = (divergence ? start / dt : start) * reciprocal(vel[i].w);
     accumulated[i] = start;
 }
