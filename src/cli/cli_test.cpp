@@ -495,6 +495,18 @@ TEST_F(Cli, LongContainerRunsOnTheGridWithWideCellIds) {
     EXPECT_GT(fell, 0.0);
 }
 
+// A DFSPH run's progress line gives each frame's steps, their dt and the fastest particle (the
+// CFL condition's speed), and the solves' sweeps.
+TEST_F(Cli, DfsphProgressGivesStepsSpeedAndSweeps) {
+    RunResult run = weir(
+        "run dam_break --solver dfsph --backend cpu --particles 1500 --frames 2 "
+        "--format ply -o d");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_TRUE(contains(run.output, " steps (dt ")) << run.output;
+    EXPECT_TRUE(contains(run.output, "m/s), density solve ")) << run.output;
+    EXPECT_TRUE(contains(run.output, "sweeps a step")) << run.output;
+}
+
 // Each solver's time to solution: wall seconds per simulated second, and DFSPH's own stages (the
 // neighbour list and both solves) timed beside the paper's.
 TEST_F(Cli, BenchGivesEachSolversTimePerSimulatedSecond) {
