@@ -11,7 +11,6 @@
 #include <cstddef>
 #include <cstdlib>
 #include <string>
-#include <vector>
 
 #include "core/team.h"
 #include "grid/neighbour_list.h"
@@ -105,17 +104,6 @@ class Dfsph final : public PressureSolver<Exec> {
                    sizeof(Real) +
                error_.size() * sizeof(float) + interior_.size() +
                wallState_.size() * sizeof(Real4) + monitor_.size() * sizeof(DfsphMonitor);
-    }
-
-    // The pressure the density solve found, p = rho kappa: its summed stiffness of the last step
-    // (zero at a free surface and wherever nothing compresses).
-    bool pressureOverDensity(Exec& exec, std::vector<Real>& out) override {
-        if (warm_[0].size() == 0) {
-            return false;
-        }
-        out.resize(warm_[0].size());
-        exec.download(warm_[0], out.data(), out.size());
-        return true;
     }
 
     SolverReport takeReport(Exec& exec) override {

@@ -93,26 +93,6 @@ TEST(Dfsph, TankAtRestHoldsRestDensityAndStaysAtRest) {
               << " m/s\n";
     EXPECT_LT(rms, 0.03 * report.expectedSpeed);
     EXPECT_LT(rms, rmsEarly);
-    // The frames' pressure is the solver's, p = rho kappa: hydrostatic in the tank, rho0 g depth
-    // below the free surface (0.2 m) within 15% in the bottom layers, and none at the surface.
-    double ratioSum = 0, surfacePressure = 0;
-    int bottom = 0, surface = 0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        const double hydrostatic = 1000.0 * 9.81 * (0.2 - double(p.y[i]));
-        if (p.y[i] < 0.03) {
-            ratioSum += double(p.p[i]) / hydrostatic;
-            ++bottom;
-        } else if (p.y[i] > 0.19) {
-            surfacePressure += double(p.p[i]);
-            ++surface;
-        }
-    }
-    ASSERT_GT(bottom, 0);
-    ASSERT_GT(surface, 0);
-    std::cout << "dfsph tank at rest: bottom pressure " << ratioSum / bottom
-              << " of hydrostatic, surface " << surfacePressure / surface << " Pa\n";
-    EXPECT_NEAR(ratioSum / bottom, 1.0, 0.15);
-    EXPECT_LT(surfacePressure / surface, 0.1 * 1000.0 * 9.81 * 0.2);
     // No particle sits on a container plane held there by the collision response.
     int onPlanes = 0;
     for (std::size_t i = 0; i < p.size(); ++i) {
