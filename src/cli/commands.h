@@ -65,7 +65,8 @@ struct BenchOptions {
 
 struct ValidateOptions {
     std::string backend = "auto";
-    std::string model;  // fluid.model of every case; "" the scenes' default
+    std::string model;   // fluid.model of every case; "" the scenes' default
+    std::string solver;  // pressure solver of every case; "" the scenes' default
     std::string cases = "hydrostatic,dam-break";  // of hydrostatic, dam-break, viscous, channels,
                                                   // lobovsky, taylor-green
     int channelResolution = 20;                   // particles across the channel

@@ -347,6 +347,11 @@ int weirMain(int argc, char** argv) {
                      "default, delta-sph)")
         ->check(CLI::IsMember({"paper", "delta-sph"}));
     validateCmd
+        ->add_option("--solver", validate.solver,
+                     "Pressure solver of every case: wcsph or dfsph (default: the scenes' own, "
+                     "wcsph)")
+        ->check(CLI::IsMember({"wcsph", "dfsph"}));
+    validateCmd
         ->add_option("--cases", validate.cases,
                      "Comma-separated cases: hydrostatic, dam-break (Martin & Moyce, over the "
                      "ladder), viscous (water, oil, honey at the coarsest rung), channels "

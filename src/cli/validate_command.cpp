@@ -16,6 +16,7 @@ int validateCommand(const ValidateOptions& options) {
         ValidationOptions o;
         o.backend = parseBackend(options.backend);
         o.model = options.model;
+        o.solver = options.solver;
         o.tankResolution = options.tankResolution;
         o.columnResolutions = options.columnResolutions;
         o.damEndT = options.damEndT;
@@ -48,13 +49,17 @@ int validateCommand(const ValidateOptions& options) {
             }
         }
         std::cerr << "weir validate: fluid model " << (o.model.empty() ? "default" : o.model)
-                  << " on " << backendName(o.backend) << "\n";
+                  << ", solver " << (o.solver.empty() ? "wcsph" : o.solver) << " on "
+                  << backendName(o.backend) << "\n";
         ValidationReport report = runValidation(o);
         for (const ValidationCheck& c : report.checks) {
             char line[400];
             std::snprintf(line, sizeof line, "  %s  %-95s %.4g (tolerance %.4g)",
                           c.passed() ? "PASS" : "FAIL", c.name.c_str(), c.value, c.tolerance);
             std::cout << line << "\n";
+        }
+        for (const std::string& why : report.notRun) {
+            std::cout << "  NOT RUN  " << why << "\n";
         }
         std::string message;
         if (!writeValidation(report, options.outDir, !options.noPlot, &message)) {

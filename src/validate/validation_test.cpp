@@ -33,6 +33,22 @@ const ValidationCheck& check(const ValidationReport& report, const std::string& 
     throw std::runtime_error("no check named " + start);
 }
 
+// A case whose scene the solver refuses (DFSPH: the dam break's periodic z) is reported as not
+// run, with the setup's reason; the others still run, and validation does not pass.
+TEST(Validate, CasesTheSolverRefusesAreReportedAndFail) {
+    ValidationOptions options;
+    options.backend = Backend::Cpu;
+    options.solver = "dfsph";
+    options.hydrostatic = false;
+    options.damBreak = true;
+    ValidationReport report = runValidation(options);
+    EXPECT_EQ(report.solver, "dfsph");
+    ASSERT_EQ(report.notRun.size(), 1u);
+    EXPECT_NE(report.notRun[0].find("dam-break"), std::string::npos) << report.notRun[0];
+    EXPECT_NE(report.notRun[0].find("periodic"), std::string::npos) << report.notRun[0];
+    EXPECT_FALSE(report.passed());
+}
+
 TEST(Validate, DeltaSphTankIsHydrostaticAndTheDamBreakFollowsMartinMoyceAtCiResolution) {
     ValidationOptions options;  // CI defaults: 24 particles over the depth, 12 across the column
     options.backend = Backend::Cpu;
