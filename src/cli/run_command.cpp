@@ -36,10 +36,21 @@ std::string howToOpen(FrameFormat format, const std::string& outDir) {
     return hint;
 }
 
+// The largest particle speed of a frame, m/s.
+double maxSpeedOf(const HostParticles& p) {
+    double fastest2 = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        fastest2 = std::max(fastest2, double(p.vx[i]) * p.vx[i] + double(p.vy[i]) * p.vy[i] +
+                                          double(p.vz[i]) * p.vz[i]);
+    }
+    return std::sqrt(fastest2);
+}
+
 // A frame's iterations of an iterative solver, for the progress line: "; 55 steps (dt 0.61 ms,
 // max speed 3.1 m/s), density solve 4.2 sweeps a step (max 9), divergence 1.3"; nothing for
-// WCSPH. frameInterval: the frame's simulated time; maxSpeed: the frame's fastest particle.
-std::string solverNote(const SolverReport& report, double frameInterval, double maxSpeed) {
+// WCSPH. frameInterval: the frame's simulated time; frame: its particles (for the fastest).
+std::string solverNote(const SolverReport& report, double frameInterval,
+                       const HostParticles& frame) {
     if (!report.iterative || report.density.solves == 0) {
         return "";
     }
@@ -51,7 +62,7 @@ std::string solverNote(const SolverReport& report, double frameInterval, double 
     // the fastest particle (CFL), so a few fast ones show here first.
     note << "; " << report.density.solves << " steps (dt "
          << rounded(1000 * frameInterval / report.density.solves, 2) << " ms, max speed "
-         << rounded(maxSpeed, 2) << " m/s)";
+         << rounded(maxSpeedOf(frame), 2) << " m/s)";
     note << ", density solve " << mean(report.density) << " sweeps a step (max "
          << report.density.maxIterations << ")";
     if (report.divergence.solves > 0) {
@@ -63,16 +74,6 @@ std::string solverNote(const SolverReport& report, double frameInterval, double 
         note << ", " << unconverged << " solves at the sweep limit";
     }
     return note.str();
-}
-
-// The largest particle speed of a frame, m/s.
-double maxSpeedOf(const HostParticles& p) {
-    double fastest2 = 0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        fastest2 = std::max(fastest2, double(p.vx[i]) * p.vx[i] + double(p.vy[i]) * p.vy[i] +
-                                          double(p.vz[i]) * p.vz[i]);
-    }
-    return std::sqrt(fastest2);
 }
 
 }  // namespace
@@ -201,8 +202,8 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             const DensityDeviation deviation = densityDeviation(host, sim->params().restDensity);
             worst.max = std::max(worst.max, deviation.max);
             worst.mean = std::max(worst.mean, deviation.mean);
-            progress.setNote(deviation.text() + solverNote(sim->takeSolverReport(),
-                                                           report.frameInterval, maxSpeedOf(host)));
+            progress.setNote(deviation.text() +
+                             solverNote(sim->takeSolverReport(), report.frameInterval, host));
             writer->write(int(frame), double(frame) * report.frameInterval, host);
             if (observer != nullptr) {
                 observer->frame(frame, double(frame) * report.frameInterval, host);
