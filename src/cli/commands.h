@@ -40,6 +40,9 @@ struct RunOptions {
     std::optional<std::int64_t> frames;
     std::string outDir;  // empty: out/<scene name>
     std::string format = "vtu";
+    // The number of the first frame (the initial state) in file names and frames.json; 1 for
+    // tools that count from 1 (Houdini's $F). Frame k of the run is numbered first + k.
+    std::int64_t firstFrameNumber = 0;
     bool explain = false;
     bool quiet = false;
     bool render = false;     // also render each frame to <out>/images/ (weir_render)

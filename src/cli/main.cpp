@@ -159,6 +159,12 @@ int weirMain(int argc, char** argv) {
     runCmd->add_option("--format", run.format, "Frame format. " + frameFormatHelp())
         ->check(CLI::IsMember(frameFormatNames()))
         ->capture_default_str();
+    runCmd
+        ->add_option("--first-frame-number", run.firstFrameNumber,
+                     "Number of the first frame (the initial state) in file names and "
+                     "frames.json: 1 for tools that count frames from 1 (Houdini's $F)")
+        ->transform(countOption(0, 1000000))
+        ->capture_default_str();
     runCmd->add_flag("--explain", run.explain, "Print the derived parameters and why");
     runCmd->add_flag("--quiet,-q", run.quiet, "No progress line");
     RenderOptions runRender;

@@ -157,6 +157,10 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
                 << "xyz"[d.axis()] << ", one per rank, balanced by particle count\n";
         }
 
+        // Frame k of the run (0: the initial state) is numbered first + k in files and frames.json.
+        const auto number = [&](std::int64_t frame) {
+            return int(options.firstFrameNumber + frame);
+        };
         std::unique_ptr<FrameWriter> writer;
         if (root) {
             writer = std::make_unique<FrameWriter>(outDir, format);
@@ -170,7 +174,7 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         // an obstacle) the initial state is compressed already, and the report must say so.
         DensityDeviation worst;
         if (root) {
-            writer->write(0, 0.0, host);
+            writer->write(number(0), 0.0, host);
             worst = densityDeviation(host, sim->params().restDensity);
             log << "weir: frame 0 (the initial state): " << worst.text() << "\n";
             if (worst.max > 0.05) {
@@ -182,7 +186,7 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             }
         }
         if (observer != nullptr) {
-            observer->frame(0, 0.0, host);
+            observer->frame(number(0), 0.0, host);
         }
         Progress progress(frames, options.quiet || !root);
         for (std::int64_t frame = 1; frame <= frames; ++frame) {
@@ -190,8 +194,8 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             FaultRecord fault = sim->fault();
             if (fault.code != 0) {
                 progress.finish();
-                log << "weir: error: " << describeFault(fault, sim->params())
-                    << "\nweir: frames 0.." << frame - 1 << " in " << outDir
+                log << "weir: error: " << describeFault(fault, sim->params()) << "\nweir: frames "
+                    << number(0) << ".." << number(frame - 1) << " in " << outDir
                     << "/ are complete and kept.\n";
                 return kExitBlowUp;
             }
@@ -204,9 +208,9 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             worst.mean = std::max(worst.mean, deviation.mean);
             progress.setNote(deviation.text() +
                              solverNote(sim->takeSolverReport(), report.frameInterval, host));
-            writer->write(int(frame), double(frame) * report.frameInterval, host);
+            writer->write(number(frame), double(frame) * report.frameInterval, host);
             if (observer != nullptr) {
-                observer->frame(frame, double(frame) * report.frameInterval, host);
+                observer->frame(number(frame), double(frame) * report.frameInterval, host);
             }
             progress.update(frame, sim->time(), sim->stepCount());
         }

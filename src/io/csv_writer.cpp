@@ -16,7 +16,7 @@ void writeCsv(const std::string& path, const HostParticles& particles) {
         for (std::size_t c = 0; c < names.size(); ++c) {
             out << (c > 0 ? "," : "") << names[c];
         }
-        out << '\n';
+        out << ',' << kParticleIdName << '\n';
         std::string row;
         for (std::size_t i = 0; i < particles.size(); ++i) {
             row.clear();
@@ -24,6 +24,8 @@ void writeCsv(const std::string& path, const HostParticles& particles) {
                 row += (c > 0 ? "," : "");
                 row += numberText((*columns[c])[i]);
             }
+            row += ',';
+            row += std::to_string(i);
             row += '\n';
             out << row;
         }

@@ -8,9 +8,9 @@
 
 namespace weir {
 
-// Writes the particles atomically under the header `x,y,z,vx,vy,vz,density,pressure` (the
-// field registry's columns). Each number is the shortest text that reads back to the same
-// Real. Throws IoError when the file cannot be written.
+// Writes the particles atomically under the header `x,y,z,vx,vy,vz,density,pressure,id` (the
+// field registry's columns, then each particle's id: its row number). Each number is the
+// shortest text that reads back to the same Real. Throws IoError when the file cannot be written.
 void writeCsv(const std::string& path, const HostParticles& particles);
 
 }  // namespace weir

@@ -22,7 +22,7 @@ TEST(CsvWriter, WritesHeaderThenShortestRoundTripRows) {
     particles.p[0] = Real(0.1);
     writeCsv(dir / "f.csv", particles);
     EXPECT_EQ(test::fileText(dir / "f.csv"),
-              "x,y,z,vx,vy,vz,density,pressure\n0.5,-1,0.001,0,2,3,1000.25,0.1\n");
+              "x,y,z,vx,vy,vz,density,pressure,id\n0.5,-1,0.001,0,2,3,1000.25,0.1,0\n");
 }
 
 TEST(CsvWriter, RoundTripsExactly) {
@@ -52,7 +52,7 @@ TEST(CsvWriter, RoundTripsExactly) {
 TEST(CsvWriter, ZeroParticlesWriteOnlyTheHeader) {
     TempDir dir;
     writeCsv(dir / "empty.csv", HostParticles{});
-    EXPECT_EQ(test::fileText(dir / "empty.csv"), "x,y,z,vx,vy,vz,density,pressure\n");
+    EXPECT_EQ(test::fileText(dir / "empty.csv"), "x,y,z,vx,vy,vz,density,pressure,id\n");
     EXPECT_EQ(readCsv(dir / "empty.csv").size(), 0u);
 }
 

@@ -46,6 +46,12 @@ std::vector<FieldDesc> particleFields(const HostParticles& particles);
 // The same list with writable arrays, for readers.
 std::vector<MutableFieldDesc> mutableParticleFields(HostParticles& particles);
 
+// Every format also writes each particle's id beside the fields: its index in the run's original
+// order (frames keep particles in that order, so a frame's ids are 0 .. n - 1, the Python module's
+// ids). An integer (int32: weir's particle counts stay below 2^31), not one of the Real fields.
+// Readers that find ids put the particles back in id order (io/frame_reader.h).
+inline constexpr const char* kParticleIdName = "id";
+
 // Every scalar column in file order, for row formats (PLY, CSV): x, y, z, then each field's
 // components. Names and arrays correspond index by index.
 std::vector<std::string> particleColumnNames();

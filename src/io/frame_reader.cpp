@@ -169,6 +169,31 @@ class VtuFile {
         }
     }
 
+    bool has(const std::string& name) const { return arrays_.count(name) != 0; }
+
+    // Reads the integer array `name` (Int32 or Int64, one component) of `tuples` values.
+    std::vector<std::int64_t> readIntegers(const std::string& name, std::size_t tuples) const {
+        const Array& array = arrays_.at(name);
+        const std::size_t valueSize = array.type == "Int32" ? 4 : array.type == "Int64" ? 8 : 0;
+        if (valueSize == 0 || array.components != 1) {
+            fail("DataArray '" + name + "' has type " + array.type + " with " +
+                 std::to_string(array.components) +
+                 " components, expected one component of Int32 or Int64");
+        }
+        if (array.bytes != tuples * valueSize) {
+            fail("DataArray '" + name + "' holds " + std::to_string(array.bytes) +
+                 " bytes, expected " + std::to_string(tuples * valueSize) + " for " +
+                 std::to_string(tuples) + " values of " + array.type);
+        }
+        const char* data = bytes_.data() + appendedStart_ + array.offset + sizeof(std::uint64_t);
+        std::vector<std::int64_t> values(tuples);
+        for (std::size_t i = 0; i < tuples; ++i) {
+            values[i] = valueSize == 4 ? loadValue<std::int32_t>(data + 4 * i)
+                                       : loadValue<std::int64_t>(data + 8 * i);
+        }
+        return values;
+    }
+
    private:
     struct Array {
         std::string type;
@@ -232,6 +257,55 @@ class VtuFile {
     std::map<std::string, Array> arrays_;
 };
 
+// The PLY property types (binary): each name and its alias (int32, float64, ...).
+struct PlyType {
+    const char* name;
+    const char* alias;
+    std::size_t size;
+    bool isFloat;
+    bool isSigned;
+};
+
+constexpr PlyType kPlyTypes[] = {
+    {"char", "int8", 1, false, true},    {"uchar", "uint8", 1, false, false},
+    {"short", "int16", 2, false, true},  {"ushort", "uint16", 2, false, false},
+    {"int", "int32", 4, false, true},    {"uint", "uint32", 4, false, false},
+    {"float", "float32", 4, true, true}, {"double", "float64", 8, true, true},
+};
+
+const PlyType* plyTypeNamed(const std::string& name) {
+    for (const PlyType& type : kPlyTypes) {
+        if (name == type.name || name == type.alias) {
+            return &type;
+        }
+    }
+    return nullptr;
+}
+
+std::string plyTypeList() {
+    std::string list;
+    for (const PlyType& type : kPlyTypes) {
+        list += (list.empty() ? "" : ", ") + std::string(type.name);
+    }
+    return list;
+}
+
+// One value of a PLY property, converted to T.
+template <class T>
+T loadPlyValue(const char* at, const PlyType& type) {
+    if (type.isFloat) {
+        return type.size == 4 ? T(loadValue<float>(at)) : T(loadValue<double>(at));
+    }
+    switch (type.size) {
+        case 1:
+            return type.isSigned ? T(loadValue<std::int8_t>(at)) : T(loadValue<std::uint8_t>(at));
+        case 2:
+            return type.isSigned ? T(loadValue<std::int16_t>(at)) : T(loadValue<std::uint16_t>(at));
+        default:
+            return type.isSigned ? T(loadValue<std::int32_t>(at)) : T(loadValue<std::uint32_t>(at));
+    }
+}
+
 std::string_view withoutCarriageReturn(std::string_view line) {
     return line.ends_with('\r') ? line.substr(0, line.size() - 1) : line;
 }
@@ -259,6 +333,9 @@ HostParticles readVtu(const std::string& path, double* time) {
     for (const MutableFieldDesc& field : mutableParticleFields(particles)) {
         file.read(field.name, field.arrays, n);
     }
+    if (file.has(kParticleIdName)) {
+        orderParticlesById(particles, file.readIntegers(kParticleIdName, n), path);
+    }
     if (time != nullptr) {
         *time = file.time();
     }
@@ -278,7 +355,7 @@ HostParticles readPly(const std::string& path) {
 
     struct Property {
         std::size_t offset;  // within a vertex row
-        bool isDouble;
+        PlyType type;
     };
     std::map<std::string, Property> properties;
     std::size_t rowBytes = 0;
@@ -310,12 +387,13 @@ HostParticles readPly(const std::string& path) {
             sawVertex = true;
         } else if (keyword == "property") {
             words >> type >> name;
-            const bool isDouble = type == "double" || type == "float64";
-            if (!sawVertex || !(isDouble || type == "float" || type == "float32")) {
-                fail(where + ": expected a vertex property of type float or double");
+            const PlyType* plyType = plyTypeNamed(type);
+            if (!sawVertex || plyType == nullptr) {
+                fail(where + ": expected a vertex property of a numeric type (" + plyTypeList() +
+                     ")");
             }
-            properties[name] = {rowBytes, isDouble};
-            rowBytes += isDouble ? 8 : 4;
+            properties[name] = {rowBytes, *plyType};
+            rowBytes += plyType->size;
         }
     }
 
@@ -340,9 +418,23 @@ HostParticles readPly(const std::string& path) {
         columns[c]->resize(vertexCount);
         for (std::size_t i = 0; i < vertexCount; ++i) {
             const char* at = bytes.data() + bodyStart + 1 + i * rowBytes + property.offset;
-            (*columns[c])[i] =
-                property.isDouble ? Real(loadValue<double>(at)) : Real(loadValue<float>(at));
+            (*columns[c])[i] = property.type.isFloat && property.type.size == 4
+                                   ? loadValue<float>(at)  // exact in a float build
+                                   : Real(loadPlyValue<double>(at, property.type));
         }
+    }
+    const auto id = properties.find(kParticleIdName);
+    if (id != properties.end()) {
+        if (id->second.type.isFloat) {
+            fail(std::string("vertex property '") + kParticleIdName + "' has type " +
+                 id->second.type.name + ", expected an integer type");
+        }
+        std::vector<std::int64_t> ids(vertexCount);
+        for (std::size_t i = 0; i < vertexCount; ++i) {
+            ids[i] = loadPlyValue<std::int64_t>(
+                bytes.data() + bodyStart + 1 + i * rowBytes + id->second.offset, id->second.type);
+        }
+        orderParticlesById(particles, ids, path);
     }
     return particles;
 }
@@ -359,18 +451,23 @@ HostParticles readCsv(const std::string& path) {
     for (const std::string& name : names) {
         expectedHeader += (expectedHeader.empty() ? "" : ",") + name;
     }
+    const std::string headerWithIds = expectedHeader + "," + kParticleIdName;
     lines[0] = withoutCarriageReturn(lines[0]);
-    if (lines[0] != expectedHeader) {
-        fail("header is '" + std::string(lines[0]) + "', expected '" + expectedHeader + "'");
+    const bool hasIds = lines[0] == headerWithIds;
+    if (lines[0] != expectedHeader && !hasIds) {
+        fail("header is '" + std::string(lines[0]) + "', expected '" + headerWithIds +
+             "' (or, from weir before ids, '" + expectedHeader + "')");
     }
     HostParticles particles;
+    std::vector<std::int64_t> ids;
     const auto columns = mutableParticleColumns(particles);
+    const std::size_t expectedValues = columns.size() + (hasIds ? 1 : 0);
     for (std::size_t l = 1; l < lines.size(); ++l) {
         const std::string where = "line " + std::to_string(l + 1);
         const auto values = split(withoutCarriageReturn(lines[l]), ',');
-        if (values.size() != columns.size()) {
+        if (values.size() != expectedValues) {
             fail(where + " has " + std::to_string(values.size()) + " values, expected " +
-                 std::to_string(columns.size()));
+                 std::to_string(expectedValues));
         }
         for (std::size_t c = 0; c < columns.size(); ++c) {
             Real value;
@@ -380,8 +477,56 @@ HostParticles readCsv(const std::string& path) {
             }
             columns[c]->push_back(value);
         }
+        if (hasIds) {
+            std::int64_t id;
+            if (!parseNumber(values.back(), id)) {
+                fail(where + ", column '" + kParticleIdName + "': '" + std::string(values.back()) +
+                     "' is not an integer");
+            }
+            ids.push_back(id);
+        }
+    }
+    if (hasIds) {
+        orderParticlesById(particles, ids, path);
     }
     return particles;
+}
+
+void orderParticlesById(HostParticles& particles, const std::vector<std::int64_t>& ids,
+                        const std::string& path) {
+    const std::size_t n = particles.size();
+    if (ids.size() != n) {
+        malformed(path, std::to_string(ids.size()) + " particle ids for " + std::to_string(n) +
+                            " particles");
+    }
+    // rowOf[id]: the row holding that id; each id in 0 .. n - 1 exactly once.
+    constexpr std::size_t kNone = ~std::size_t(0);
+    std::vector<std::size_t> rowOf(n, kNone);
+    bool inOrder = true;
+    for (std::size_t row = 0; row < n; ++row) {
+        const std::int64_t id = ids[row];
+        if (id < 0 || std::uint64_t(id) >= n) {
+            malformed(path, "particle " + std::to_string(row) + " has id " + std::to_string(id) +
+                                " (allowed: 0.." + std::to_string(n - 1) + ", one per particle)");
+        }
+        if (rowOf[std::size_t(id)] != kNone) {
+            malformed(path, "particles " + std::to_string(rowOf[std::size_t(id)]) + " and " +
+                                std::to_string(row) + " have the same id " + std::to_string(id) +
+                                " (ids must be unique)");
+        }
+        rowOf[std::size_t(id)] = row;
+        inOrder = inOrder && std::uint64_t(id) == row;
+    }
+    if (inOrder) {
+        return;
+    }
+    std::vector<Real> sorted(n);
+    for (std::vector<Real>* column : mutableParticleColumns(particles)) {
+        for (std::size_t id = 0; id < n; ++id) {
+            sorted[id] = (*column)[rowOf[id]];
+        }
+        column->swap(sorted);
+    }
 }
 
 void checkFramePositions(const HostParticles& particles, const std::string& path) {

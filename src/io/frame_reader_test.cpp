@@ -16,18 +16,7 @@ namespace {
 
 using test::TempDir;
 
-// Expects read(path) to throw an IoError whose message names path and contains `detail`.
-template <class Read>
-void expectIoError(Read read, const std::string& path, const std::string& detail) {
-    try {
-        read(path);
-        ADD_FAILURE() << "no IoError for " << path;
-    } catch (const IoError& e) {
-        const std::string message = e.what();
-        EXPECT_NE(message.find(path), std::string::npos) << message;
-        EXPECT_NE(message.find(detail), std::string::npos) << message;
-    }
-}
+using test::expectIoError;
 
 // Rewrites `from` cut to every length shorter than the complete file (the final newline is
 // not required) and expects read to reject each.

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "io/io_error.h"
 #include "solver/particles.h"
 
 namespace weir::test {
@@ -98,6 +99,19 @@ inline void expectSameBits(const HostParticles& expected, const HostParticles& a
     EXPECT_TRUE(sameBits(expected.vz, actual.vz));
     EXPECT_TRUE(sameBits(expected.rho, actual.rho));
     EXPECT_TRUE(sameBits(expected.p, actual.p));
+}
+
+// Expects read(path) to throw an IoError whose message names path and contains `detail`.
+template <class Read>
+void expectIoError(Read read, const std::string& path, const std::string& detail) {
+    try {
+        read(path);
+        ADD_FAILURE() << "no IoError for " << path;
+    } catch (const IoError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find(path), std::string::npos) << message;
+        EXPECT_NE(message.find(detail), std::string::npos) << message;
+    }
 }
 
 inline std::string fileText(const std::string& path) {

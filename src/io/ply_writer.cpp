@@ -1,9 +1,13 @@
 // writePly: ASCII header, then the vertex rows as raw little-endian values.
 #include "io/ply_writer.h"
 
+#include <algorithm>
 #include <bit>
+#include <cstdint>
+#include <cstring>
 #include <ostream>
 #include <type_traits>
+#include <vector>
 
 #include "io/atomic_file.h"
 #include "io/field_registry.h"
@@ -24,8 +28,27 @@ void writePly(const std::string& path, const HostParticles& particles) {
         for (const std::string& name : particleColumnNames()) {
             out << "property " << type << ' ' << name << '\n';
         }
-        out << "end_header\n";
-        writeInterleaved<Real>(out, particleColumns(particles), particles.size());
+        out << "property int " << kParticleIdName << "\n"
+            << "end_header\n";
+        // Rows of the Real columns then the int32 id, through a bounded buffer.
+        const auto columns = particleColumns(particles);
+        const std::size_t rowBytes = columns.size() * sizeof(Real) + sizeof(std::int32_t);
+        constexpr std::size_t kRowsPerChunk = 2048;
+        std::vector<char> buffer(kRowsPerChunk * rowBytes);
+        for (std::size_t start = 0; start < particles.size(); start += kRowsPerChunk) {
+            const std::size_t rows = std::min(kRowsPerChunk, particles.size() - start);
+            char* at = buffer.data();
+            for (std::size_t i = start; i < start + rows; ++i) {
+                for (const std::vector<Real>* column : columns) {
+                    std::memcpy(at, &(*column)[i], sizeof(Real));
+                    at += sizeof(Real);
+                }
+                const std::int32_t id = std::int32_t(i);
+                std::memcpy(at, &id, sizeof id);
+                at += sizeof id;
+            }
+            out.write(buffer.data(), std::streamsize(rows * rowBytes));
+        }
     });
 }
 

@@ -10,7 +10,8 @@ namespace weir {
 
 // Writes the particles atomically as `element vertex N` with one float (double in a WEIR_DOUBLE
 // build) property per column: x y z, then the field registry's columns (vx vy vz density
-// pressure). Throws IoError when the file cannot be written.
+// pressure), then `property int id` (each particle's id, field_registry.h). Throws IoError when
+// the file cannot be written.
 void writePly(const std::string& path, const HostParticles& particles);
 
 }  // namespace weir

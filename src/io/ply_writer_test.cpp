@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
+
 #include "io/frame_reader.h"
 #include "io/io_test_support.h"
 
@@ -30,10 +33,14 @@ TEST(PlyWriter, WritesHeaderThenRows) {
     for (const char* name : {"x", "y", "z", "vx", "vy", "vz", "density", "pressure"}) {
         header += "property " + type + " " + name + "\n";
     }
-    header += "end_header\n";
+    header += "property int id\nend_header\n";
     const std::string text = test::fileText(dir / "f.ply");
     EXPECT_EQ(text.substr(0, header.size()), header);
-    EXPECT_EQ(text.size(), header.size() + 2 * 8 * sizeof(Real));
+    EXPECT_EQ(text.size(), header.size() + 2 * (8 * sizeof(Real) + 4));
+    // The second row's id, after its eight Reals: 1.
+    std::int32_t id = -1;
+    std::memcpy(&id, text.data() + text.size() - 4, 4);
+    EXPECT_EQ(id, 1);
 }
 
 TEST(PlyWriter, ZeroParticles) {
