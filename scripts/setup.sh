@@ -14,6 +14,9 @@ packages=(cmake ninja-build g++ pkg-config libgtest-dev libbenchmark-dev nlohman
           ffmpeg
           # distributed runs (mpirun -n R weir run): OpenMPI
           libopenmpi-dev openmpi-bin
+          # OpenVDB output (--format vdb, optional at build time; docs/pipeline.md): its
+          # CMake module needs Boost.Iostreams besides
+          libopenvdb-dev libboost-iostreams-dev
           # the Python module (import weir): headers and venv; nanobind, NumPy, pytest and
           # matplotlib come from PyPI into a virtual environment (below)
           python3-dev python3-venv)

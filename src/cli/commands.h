@@ -43,6 +43,7 @@ struct RunOptions {
     // The number of the first frame (the initial state) in file names and frames.json; 1 for
     // tools that count from 1 (Houdini's $F). Frame k of the run is numbered first + k.
     std::int64_t firstFrameNumber = 0;
+    double cellSize = 0;  // the vdb format's voxel [m]; 0: half the particle spacing
     bool explain = false;
     bool quiet = false;
     bool render = false;     // also render each frame to <out>/images/ (weir_render)

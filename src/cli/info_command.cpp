@@ -8,6 +8,7 @@
 #include "core/backend.h"
 #include "core/config.h"
 #include "grid/cell_id.h"
+#include "io/optional_formats.h"
 #include "scene/scene.h"
 
 namespace weir {
@@ -56,6 +57,9 @@ int infoCommand(bool renderingBuilt) {
     feature("MPI", kMpi, kMpi ? "mpirun -n R weir run: docs/cluster.md" : "MPI not found");
     feature("NCCL", kNccl,
             kNccl ? "GPU-to-GPU halo exchange" : "needs CUDA, MPI and NCCL; halos go via the host");
+    feature("OpenVDB", openVdbBuilt(),
+            openVdbBuilt() ? "--format vdb: level set, velocity and point grids (docs/pipeline.md)"
+                           : "libopenvdb-dev not found when it was configured");
     feature("double precision", sizeof(Real) == 8,
             sizeof(Real) == 8 ? "double particle data" : "float particle data; -DWEIR_DOUBLE=ON");
     std::cout << "cpu: " << describeBackend(Backend::Cpu) << "\n";

@@ -46,6 +46,26 @@ std::string colourChoices() {
     return list;
 }
 
+// --format of weir run: a frame format's name, or why this build lacks it (no OpenVDB).
+CLI::Validator frameFormatValidator() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            try {
+                weir::parseFrameFormat(text);
+                return "";
+            } catch (const std::invalid_argument& e) {
+                return e.what();
+            }
+        },
+        "FORMAT", "frame format");
+}
+
+// FRAMES_DIR of the commands that read a run's frames (render, mesh).
+void addFramesDirectory(CLI::App* cmd, std::string& dir) {
+    cmd->add_option("FRAMES_DIR", dir, "Frames directory written by `weir run` (holds frames.json)")
+        ->required();
+}
+
 // --frame N and --frames A:B of the commands that read a run's frames (render, mesh).
 void addFrameSelection(CLI::App* cmd, std::optional<std::int64_t>& frame, std::string& frames) {
     CLI::Option* one = cmd->add_option("--frame", frame, "Only frame N (its index in frames.json)")
@@ -157,7 +177,7 @@ int weirMain(int argc, char** argv) {
                      "removed first, with its images/ and mesh/ files); without it such a "
                      "directory is refused");
     runCmd->add_option("--format", run.format, "Frame format. " + frameFormatHelp())
-        ->check(CLI::IsMember(frameFormatNames()))
+        ->check(frameFormatValidator())
         ->capture_default_str();
     runCmd
         ->add_option("--first-frame-number", run.firstFrameNumber,
@@ -179,7 +199,8 @@ int weirMain(int argc, char** argv) {
     runCmd->add_option("--mesh-format", runMesh.formats, "With --mesh: " + meshFormatHelp())
         ->capture_default_str();
     runCmd->add_option("--cell-size", runMesh.cellSize,
-                       "With --mesh: marching-cubes cell in metres (default half the spacing)");
+                       "With --mesh or --format vdb: marching-cubes cell and voxel in metres "
+                       "(default half the spacing)");
 
     BenchOptions bench;
     CLI::App* benchCmd = app.add_subcommand(
@@ -232,10 +253,7 @@ int weirMain(int argc, char** argv) {
     RenderOptions render;
     CLI::App* renderCmd = app.add_subcommand(
         "render", "Render the frames of a run to PNG images (and an MP4 with ffmpeg), offscreen");
-    renderCmd
-        ->add_option("FRAMES_DIR", render.framesDir,
-                     "Frames directory written by `weir run` (holds frames.json)")
-        ->required();
+    addFramesDirectory(renderCmd, render.framesDir);
     renderCmd->add_option("--out,-o", render.outDir, "Images directory (default FRAMES/images)");
     addImageOptions(renderCmd, render);
     renderCmd->add_option("--scene", render.scene,
@@ -260,11 +278,10 @@ int weirMain(int argc, char** argv) {
 
     MeshOptions mesh;
     CLI::App* meshCmd = app.add_subcommand(
-        "mesh", "Reconstruct the fluid surface of each frame (marching cubes): OBJ and PLY files");
-    meshCmd
-        ->add_option("FRAMES_DIR", mesh.framesDir,
-                     "Frames directory written by `weir run` (holds frames.json)")
-        ->required();
+        "mesh",
+        "Reconstruct the fluid surface of each frame (marching cubes): OBJ and PLY files, or "
+        "OpenVDB level sets");
+    addFramesDirectory(meshCmd, mesh.framesDir);
     meshCmd->add_option("--out,-o", mesh.outDir, "Mesh directory (default FRAMES/mesh)");
     meshCmd->add_option("--format", mesh.formats, "Mesh formats: " + meshFormatHelp())
         ->capture_default_str();
@@ -412,6 +429,7 @@ int weirMain(int argc, char** argv) {
         return kExitUsage;
     }
     if (runCmd->parsed()) {
+        run.cellSize = runMesh.cellSize;
         try {
             RunObserverList observers;
             if (run.render) {

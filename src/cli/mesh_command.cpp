@@ -13,6 +13,7 @@
 #include "cli/progress.h"
 #include "io/frame_index.h"
 #include "io/mesh_writer.h"
+#include "io/optional_formats.h"
 #include "scene/setup.h"
 #include "surface/surface.h"
 
@@ -35,8 +36,10 @@ std::vector<MeshFormat> parseMeshFormats(const std::string& list, const std::str
         try {
             format = parseMeshFormat(item);
         } catch (const std::invalid_argument&) {
-            throw std::invalid_argument(option + " '" + list + "': '" + item +
-                                        "' is not a mesh format; " + allowed);
+            const std::string missing = missingFormatReason(item);
+            throw std::invalid_argument(option + " '" + list + "': '" + item + "' " +
+                                        (missing.empty() ? "is not a mesh format; " + allowed
+                                                         : "cannot be written: " + missing));
         }
         for (MeshFormat f : formats) {
             if (f == *format) {
@@ -83,12 +86,14 @@ class FrameMesher {
     }
 
     // Returns the triangle count.
-    std::size_t mesh(std::int64_t index, const HostParticles& particles) {
+    std::size_t mesh(std::int64_t index, double time, const HostParticles& particles) {
         const auto start = Clock::now();
-        const TriangleMesh mesh = reconstructSurface(backend_, particles, options_);
+        SurfacePlan plan;
+        const TriangleMesh mesh = reconstructSurface(backend_, particles, options_, &plan);
         const auto built = Clock::now();
+        const SurfaceFrame frame{mesh, &particles, plan.spacing, plan.cellSize, time};
         for (MeshFormat format : formats_) {
-            writeMesh((fs::path(outDir_) / meshName(index, format)).string(), format, mesh);
+            writeMesh((fs::path(outDir_) / meshName(index, format)).string(), format, frame);
         }
         buildSeconds_ += std::chrono::duration<double>(built - start).count();
         writeSeconds_ += std::chrono::duration<double>(Clock::now() - built).count();
@@ -144,8 +149,8 @@ class RunMesher : public RunObserver {
                                                 surfaceOptions(options_, spacing));
         std::cerr << "weir: writing each frame's surface to " << dir << "/\n";
     }
-    void frame(std::int64_t index, double, const HostParticles& particles) override {
-        mesher_->mesh(index, particles);
+    void frame(std::int64_t index, double time, const HostParticles& particles) override {
+        mesher_->mesh(index, time, particles);
     }
     void finish() override {
         if (mesher_) {
@@ -205,7 +210,7 @@ int meshCommand(const MeshOptions& options) {
             if (i > 0) {
                 particles = readFrameFile(frames[i].path);
             }
-            mesher.mesh(frames[i].index, particles);
+            mesher.mesh(frames[i].index, frames[i].time, particles);
             progress.update(i + 1);
         }
         progress.finish();

@@ -1,5 +1,5 @@
-// End-to-end tests of the output that artists' tools open (issue 22): frame numbers from 1 and
-// particle ids.
+// End-to-end tests of the output that artists' tools open (issue 22): frame numbers from 1, ids,
+// OpenVDB frames and meshes, and damaged VDB files given to weir mesh and weir render.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -8,6 +8,8 @@
 
 #include "cli/cli_test_support.h"
 #include "io/frame_reader.h"
+#include "io/optional_formats.h"
+#include "io/vdb_file.h"
 
 namespace weir {
 namespace {
@@ -49,6 +51,61 @@ TEST_F(Cli, FirstFrameNumberOneNumbersFilesIndexAndMeshesFromOne) {
     ASSERT_EQ(mesh.exitCode, 0) << mesh.output;
     EXPECT_EQ(entries(dir_ / "again"), std::vector<std::string>{"surface_00003.obj"});
     EXPECT_EQ(weir("mesh frames --frame 0 --quiet").exitCode, 2);
+}
+
+TEST_F(Cli, VdbFramesAndSurfacesOrAClearNoOpenVdb) {
+    writeFile("tiny.json", kTinyDrawScene);
+    if (!openVdbBuilt()) {
+        for (const std::string args : {std::string(kTinyRun) + " --frames 1 --format vdb --out v",
+                                       std::string("mesh v --format obj,vdb")}) {
+            const RunResult result = weir(args);
+            EXPECT_EQ(result.exitCode, 2) << args << "\n" << result.output;
+            EXPECT_TRUE(contains(result.output, "this build has no OpenVDB"));
+            EXPECT_TRUE(contains(result.output, "libopenvdb-dev"));
+        }
+        return;
+    }
+    RunResult run = weir(std::string(kTinyRun) + " --frames 1 --format vdb --out v");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_TRUE(contains(run.output, "frame_NNNNN.vdb volumes in Houdini"));
+    EXPECT_EQ(entries(dir_ / "v"),
+              (std::vector<std::string>{"frame_00000.vdb", "frame_00001.vdb", "frames.json"}));
+    double time = -1;
+    const HostParticles frame = readVdbFrame((dir_ / "v" / "frame_00001.vdb").string(), &time);
+    EXPECT_EQ(frame.size(), 144u);
+    EXPECT_NEAR(time, 1 / 30.0, 1e-12);
+    // weir mesh reads the vdb frames and writes vdb surfaces beside the OBJ files.
+    RunResult mesh = weir("mesh v --format obj,vdb --quiet");
+    ASSERT_EQ(mesh.exitCode, 0) << mesh.output;
+    EXPECT_EQ(entries(dir_ / "v" / "mesh"),
+              (std::vector<std::string>{"surface_00000.obj", "surface_00000.vdb",
+                                        "surface_00001.obj", "surface_00001.vdb"}));
+    EXPECT_EQ(readVdbFrame((dir_ / "v" / "mesh" / "surface_00001.vdb").string()).x, frame.x);
+}
+
+TEST_F(Cli, ATruncatedOrForeignVdbFrameIsRefusedNamingIt) {
+    if (!openVdbBuilt()) {
+        GTEST_SKIP() << "this build has no OpenVDB";
+    }
+    writeFile("tiny.json", kTinyDrawScene);
+    ASSERT_EQ(weir(std::string(kTinyRun) + " --frames 1 --format vdb --out v").exitCode, 0);
+    const std::string bytes = fileText(dir_ / "v" / "frame_00001.vdb");
+    for (const std::string& damaged :
+         {bytes.substr(0, bytes.size() / 2), bytes.substr(0, 100), std::string("not a vdb\n")}) {
+        writeFile("v/frame_00001.vdb", damaged);
+        for (const std::string args : {"mesh v --frame 1 --quiet", "mesh v --quiet"}) {
+            const RunResult mesh = weir(args);
+            EXPECT_EQ(mesh.exitCode, 1) << args << "\n" << mesh.output;
+            EXPECT_TRUE(contains(mesh.output, "cannot read '"));
+            EXPECT_TRUE(contains(mesh.output, "frame_00001.vdb'"));
+        }
+#if defined(WEIR_HAS_RENDER)
+        const RunResult render = weir("render v --frame 1 --quiet");
+        EXPECT_EQ(render.exitCode, 1) << render.output;
+        EXPECT_TRUE(contains(render.output, "frame_00001.vdb'"));
+        EXPECT_FALSE(fs::exists(dir_ / "v" / "images" / "frame_00001.png"));
+#endif
+    }
 }
 
 }  // namespace

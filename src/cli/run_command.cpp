@@ -164,6 +164,7 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         std::unique_ptr<FrameWriter> writer;
         if (root) {
             writer = std::make_unique<FrameWriter>(outDir, format);
+            writer->setScale(report.spacing, options.cellSize);
             writer->setRecord(makeRunRecord(scene.name, scene.sourcePath, scene.json,
                                             sim->particleCount(), report.spacing, WEIR_VERSION));
         }

@@ -18,14 +18,44 @@ namespace {
 // The OS reason for the last failure, or a fallback when the library left errno unset.
 std::string osReason(const char* fallback) { return errno != 0 ? std::strerror(errno) : fallback; }
 
+// NAME.tmp.PID.N: pid + counter, unique across processes and across threads of this one, and the
+// pattern removeStaleTemporaries knows.
+std::string temporaryPath(const std::string& path) {
+    static std::atomic<unsigned> counter{0};
+    return path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+}
+
 }  // namespace
+
+void writeFileAtomicallyByName(const std::string& path,
+                               const std::function<void(const std::string&)>& writeTemporary) {
+    const std::string tmpPath = temporaryPath(path);
+    const auto removeTmp = [&] {
+        std::error_code ignored;
+        std::filesystem::remove(tmpPath, ignored);
+    };
+    try {
+        writeTemporary(tmpPath);
+    } catch (...) {
+        removeTmp();
+        throw;
+    }
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(tmpPath, ec)) {
+        throw IoError("cannot write '" + path + "': the temporary '" + tmpPath +
+                      "' was not written");
+    }
+    std::filesystem::rename(tmpPath, path, ec);
+    if (ec) {
+        removeTmp();
+        throw IoError("cannot write '" + path + "': cannot rename temporary '" + tmpPath +
+                      "' over it: " + ec.message());
+    }
+}
 
 void writeFileAtomically(const std::string& path,
                          const std::function<void(std::ostream&)>& writeBody) {
-    // pid + counter: unique across processes and across threads of this one.
-    static std::atomic<unsigned> counter{0};
-    const std::string tmpPath =
-        path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+    const std::string tmpPath = temporaryPath(path);
     const auto removeTmp = [&] {
         std::error_code ignored;
         std::filesystem::remove(tmpPath, ignored);

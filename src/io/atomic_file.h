@@ -17,6 +17,12 @@ namespace weir {
 void writeFileAtomically(const std::string& path,
                          const std::function<void(std::ostream&)>& writeBody);
 
+// The same for writers that write a file by its name (a library such as OpenVDB):
+// writeTemporary(tmpPath) creates and fills the temporary, which is then renamed over `path`.
+// A writeTemporary that throws, or leaves no file, leaves nothing behind (IoError as above).
+void writeFileAtomicallyByName(
+    const std::string& path, const std::function<void(const std::string& tmpPath)>& writeTemporary);
+
 // Removes the temporaries that writers killed mid-write left in `dir` (not its subfolders):
 // files named NAME.tmp.PID or NAME.tmp.PID.SUFFIX (writeFileAtomically's names, and the video's)
 // whose process PID no longer runs. Returns the names removed. A missing dir removes nothing.

@@ -7,7 +7,9 @@
 #include "io/csv_writer.h"
 #include "io/frame_reader.h"
 #include "io/io_error.h"
+#include "io/optional_formats.h"
 #include "io/ply_writer.h"
+#include "io/vdb_file.h"
 #include "io/vtu_writer.h"
 
 namespace weir {
@@ -15,21 +17,33 @@ namespace weir {
 const std::vector<FrameFormatEntry>& frameFormatTable() {
     // The one place that lists the frame formats: add a row here (a writer, a reader, the
     // words) and `weir run --format`, FrameWriter, `weir render` and `weir mesh` take it.
-    static const std::vector<FrameFormatEntry> table = {
-        {"vtu", "VTK XML points with a .pvd time series (ParaView)",
-         "BASE.pvd in ParaView (File > Open; it gives each frame its time)", true,
-         [](const std::string& path, const HostParticles& p, double time) {
-             writeVtu(path, p, time);
-         },
-         [](const std::string& path, double* time) { return readVtu(path, time); }},
-        {"ply", "binary PLY point clouds (Blender, Houdini, MeshLab)",
-         "the BASE_NNNNN.ply point clouds in Blender, Houdini or MeshLab", false,
-         [](const std::string& path, const HostParticles& p, double) { writePly(path, p); },
-         [](const std::string& path, double*) { return readPly(path); }},
-        {"csv", "CSV text, a header then one row per particle",
-         "the BASE_NNNNN.csv tables in ParaView, a spreadsheet or pandas", false,
-         [](const std::string& path, const HostParticles& p, double) { writeCsv(path, p); },
-         [](const std::string& path, double*) { return readCsv(path); }},
+    static const std::vector<FrameFormatEntry> table =
+    { {"vtu", "VTK XML points with a .pvd time series (ParaView)",
+       "BASE.pvd in ParaView (File > Open; it gives each frame its time)", true,
+       [](const std::string& path, const HostParticles& p, const FrameInfo& info) {
+           writeVtu(path, p, info.time);
+       },
+       [](const std::string& path, double* time) { return readVtu(path, time); }},
+      {"ply", "binary PLY point clouds (Blender, Houdini, MeshLab)",
+       "the BASE_NNNNN.ply point clouds in Blender, Houdini or MeshLab", false,
+       [](const std::string& path, const HostParticles& p, const FrameInfo&) { writePly(path, p); },
+       [](const std::string& path, double*) { return readPly(path); }},
+      {"csv", "CSV text, a header then one row per particle",
+       "the BASE_NNNNN.csv tables in ParaView, a spreadsheet or pandas", false,
+       [](const std::string& path, const HostParticles& p, const FrameInfo&) { writeCsv(path, p); },
+       [](const std::string& path, double*) { return readCsv(path); }},
+#if defined(WEIR_HAS_OPENVDB)
+      {"vdb",
+       "OpenVDB: the surface as a level set, a velocity grid and the particles as points "
+       "(Houdini, Blender)",
+       "the BASE_NNNNN.vdb volumes in Houdini (File SOP) or Blender (Add > Volume > Import "
+       "OpenVDB)",
+       false,
+       [](const std::string& path, const HostParticles& p, const FrameInfo& info) {
+           writeVdbFrame(path, p, {info.time, info.spacing, info.voxelSize});
+       },
+       [](const std::string& path, double* time) { return readVdbFrame(path, time); }},
+#endif
     };
     return table;
 }
@@ -44,6 +58,10 @@ FrameFormat parseFrameFormat(const std::string& text) {
         if (text == table[i].name) {
             return FrameFormat(i);
         }
+    }
+    const std::string missing = missingFormatReason(text);
+    if (!missing.empty()) {
+        throw std::invalid_argument("frame format \"" + text + "\": " + missing);
     }
     throw std::invalid_argument("unknown frame format \"" + text +
                                 "\" (allowed: " + frameFormatList() + ")");
@@ -83,6 +101,10 @@ FrameFormat frameFormatOfFile(const std::string& path) {
             return parseFrameFormat(entry.name);
         }
         allowed.append(allowed.empty() ? "." : ", .").append(entry.name);
+    }
+    const std::string missing = missingFormatReason(extension.empty() ? "" : extension.substr(1));
+    if (!missing.empty()) {
+        throw IoError("cannot read '" + path + "': " + missing);
     }
     throw IoError("cannot read '" + path + "': unknown frame format '" + extension +
                   "' (allowed: " + allowed + ")");

@@ -13,6 +13,13 @@
 
 namespace weir {
 
+// What a frame is written with besides its particles.
+struct FrameInfo {
+    double time = 0;       // simulation time [s]
+    double spacing = 0;    // the run's particle spacing d [m]; 0: measured where a format needs it
+    double voxelSize = 0;  // voxel of the volume formats (vdb) [m]; 0: d / 2
+};
+
 struct FrameFormatEntry {
     const char* name;  // CLI name, file extension and the format's name in frames.json
     const char* help;  // one line for --format's help
@@ -20,7 +27,7 @@ struct FrameFormatEntry {
     const char* openHint;
     bool pvdSeries;  // the writer also keeps DIR/<base>.pvd, a ParaView time series
     // Writes one frame atomically; throws IoError.
-    void (*write)(const std::string& path, const HostParticles& particles, double time);
+    void (*write)(const std::string& path, const HostParticles& particles, const FrameInfo& info);
     // Reads one frame back; stores its time in *time where the format holds it and time is
     // given. Throws IoError naming the file and what is wrong.
     HostParticles (*read)(const std::string& path, double* time);
@@ -45,8 +52,9 @@ class FrameFormat {
     std::size_t index_;
 };
 
-// A table name ("vtu", "ply", "csv"); anything else throws std::invalid_argument naming the value
-// and the allowed list.
+// A table name ("vtu", "ply", "csv", "vdb" where OpenVDB is built); anything else throws
+// std::invalid_argument naming the value and the allowed list, or, for a format this build lacks,
+// why (io/optional_formats.h).
 FrameFormat parseFrameFormat(const std::string& text);
 // The file extension without the dot, also the format's name in frames.json.
 std::string formatExtension(FrameFormat format);

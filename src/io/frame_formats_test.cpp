@@ -10,6 +10,7 @@
 #include "io/frame_index.h"
 #include "io/frame_writer.h"
 #include "io/io_test_support.h"
+#include "io/optional_formats.h"
 
 namespace weir {
 namespace {
@@ -29,7 +30,7 @@ TEST(FrameFormats, EveryEntryIsCompleteAndNamedOnce) {
         EXPECT_NE(frameFormatHelp().find(entry.name), std::string::npos);
     }
     EXPECT_EQ(names.size(), frameFormatNames().size());
-    EXPECT_EQ(frameFormatList(), "vtu, ply, csv");
+    EXPECT_EQ(frameFormatList(), openVdbBuilt() ? "vtu, ply, csv, vdb" : "vtu, ply, csv");
     EXPECT_EQ(std::string(frameFormatTable().front().name), "vtu");  // the default first
 }
 
@@ -44,14 +45,39 @@ TEST(FrameFormats, EveryEntryRoundTripsThroughFrameWriterAndReadFrameFile) {
         EXPECT_EQ(frameFormatOfFile(writer.framePath(2)), format);
         const HostParticles back = readFrameFile(writer.framePath(2));
         ASSERT_EQ(back.size(), particles.size());
+        // Exact but for vdb, whose points are stored as offsets in their voxel (float).
+        const double tolerance = name == "vdb" ? 1e-6 * 1e3 : 0;
         for (std::size_t i = 0; i < particles.size(); ++i) {
-            ASSERT_EQ(back.x[i], particles.x[i]) << i;
+            ASSERT_NEAR(back.x[i], particles.x[i], tolerance) << i;
             ASSERT_EQ(back.p[i], particles.p[i]) << i;
         }
         EXPECT_EQ(std::filesystem::exists(dir / "frame.pvd"), format.entry().pvdSeries);
         const std::vector<FrameEntry> frames = readFrameIndex(dir.path().string());
         ASSERT_EQ(frames.size(), 1u);
         EXPECT_EQ(frames[0].time, 0.25);
+    }
+}
+
+TEST(FrameFormats, AFormatThisBuildLacksSaysWhy) {
+    if (openVdbBuilt()) {
+        EXPECT_EQ(missingFormatReason("vdb"), "");
+        EXPECT_EQ(parseFrameFormat("vdb").name(), std::string("vdb"));
+        return;
+    }
+    try {
+        parseFrameFormat("vdb");
+        FAIL() << "expected std::invalid_argument";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("this build has no OpenVDB"), std::string::npos)
+            << e.what();
+    }
+    try {
+        frameFormatOfFile("/some/frame_00001.vdb");
+        FAIL() << "expected IoError";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("'/some/frame_00001.vdb': this build has no OpenVDB"),
+                  std::string::npos)
+            << e.what();
     }
 }
 

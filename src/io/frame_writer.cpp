@@ -42,7 +42,7 @@ void FrameWriter::write(int frameIndex, double time, const HostParticles& partic
         throw std::invalid_argument("frame index must be >= 0, got " + std::to_string(frameIndex));
     }
     const std::string path = framePath(frameIndex);
-    format_.entry().write(path, particles, time);
+    format_.entry().write(path, particles, {time, spacing_, voxelSize_});
     const std::string file = frameFileName(frameIndex);
     frames_[frameIndex] = {time, file};
     if (pvd_) {

@@ -34,6 +34,12 @@ class FrameWriter {
     // Fields written into frames.json beside format, count and frames, from the next write on:
     // what the run was (its scene, its spacing; io/frame_index.h reads them back).
     void setRecord(nlohmann::json record) { record_ = std::move(record); }
+    // The run's particle spacing and the volume formats' voxel (FrameInfo), from the next write
+    // on; unset, a format that needs them measures each frame.
+    void setScale(double spacing, double voxelSize) {
+        spacing_ = spacing;
+        voxelSize_ = voxelSize;
+    }
 
    private:
     std::string frameFileName(int frameIndex) const;
@@ -45,6 +51,7 @@ class FrameWriter {
     std::optional<PvdCollection> pvd_;                      // vtu only
     std::map<int, std::pair<double, std::string>> frames_;  // index -> (time, file name)
     nlohmann::json record_ = nlohmann::json::object();
+    double spacing_ = 0, voxelSize_ = 0;
 };
 
 }  // namespace weir

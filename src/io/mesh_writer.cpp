@@ -9,6 +9,8 @@
 
 #include "io/atomic_file.h"
 #include "io/io_util.h"
+#include "io/optional_formats.h"
+#include "io/vdb_file.h"
 
 namespace weir {
 
@@ -18,8 +20,23 @@ const std::vector<MeshFormatEntry>& meshFormatTable() {
     // The one place that lists the mesh formats: `weir mesh --format` and `weir run
     // --mesh-format` take a row added here.
     static const std::vector<MeshFormatEntry> table = {
-        {"obj", "Wavefront OBJ text with normals", &writeObj},
-        {"ply", "binary PLY with normals", &writeMeshPly},
+        {"obj", "Wavefront OBJ text with normals",
+         [](const std::string& path, const SurfaceFrame& frame) { writeObj(path, frame.mesh); }},
+        {"ply", "binary PLY with normals",
+         [](const std::string& path, const SurfaceFrame& frame) {
+             writeMeshPly(path, frame.mesh);
+         }},
+#if defined(WEIR_HAS_OPENVDB)
+        {"vdb", "OpenVDB: the surface as a level set, with a velocity grid and the points",
+         [](const std::string& path, const SurfaceFrame& frame) {
+             if (frame.particles == nullptr) {
+                 throw std::invalid_argument("cannot write '" + path +
+                                             "': a vdb surface needs the frame's particles");
+             }
+             writeVdbFrame(path, *frame.particles, {frame.time, frame.spacing, frame.cellSize},
+                           &frame.mesh);
+         }},
+#endif
     };
     return table;
 }
@@ -33,6 +50,10 @@ MeshFormat parseMeshFormat(const std::string& text) {
         if (text == table[i].name) {
             return MeshFormat(i);
         }
+    }
+    const std::string missing = missingFormatReason(text);
+    if (!missing.empty()) {
+        throw std::invalid_argument("mesh format '" + text + "': " + missing);
     }
     throw std::invalid_argument("unknown mesh format '" + text + "': allowed are " +
                                 meshFormatList());
@@ -141,7 +162,11 @@ void writeMeshPly(const std::string& path, const TriangleMesh& mesh) {
 }
 
 void writeMesh(const std::string& path, MeshFormat format, const TriangleMesh& mesh) {
-    format.entry().write(path, mesh);
+    format.entry().write(path, SurfaceFrame{mesh});
+}
+
+void writeMesh(const std::string& path, MeshFormat format, const SurfaceFrame& frame) {
+    format.entry().write(path, frame);
 }
 
 }  // namespace weir

@@ -6,15 +6,26 @@
 #include <vector>
 
 #include "io/io_error.h"
+#include "solver/particles.h"
 #include "surface/triangle_mesh.h"
 
 namespace weir {
+
+// A frame's surface, and what the volume format (vdb) writes beside it: the frame's particles,
+// its scale and its time. Mesh-only formats (obj, ply) take the mesh alone.
+struct SurfaceFrame {
+    const TriangleMesh& mesh;
+    const HostParticles* particles = nullptr;  // null: none known (vdb refuses)
+    double spacing = 0;                        // particle spacing d [m]
+    double cellSize = 0;                       // the surface lattice's cell [m]: vdb's voxel
+    double time = 0;                           // [s]
+};
 
 // The mesh formats as one table (mesh_writer.cpp): name (also the extension), help, writer.
 struct MeshFormatEntry {
     const char* name;
     const char* help;
-    void (*write)(const std::string& path, const TriangleMesh& mesh);
+    void (*write)(const std::string& path, const SurfaceFrame& frame);
 };
 const std::vector<MeshFormatEntry>& meshFormatTable();
 
@@ -32,7 +43,8 @@ class MeshFormat {
     std::size_t index_;
 };
 
-// "obj" or "ply"; anything else throws std::invalid_argument naming the value and the allowed list.
+// "obj", "ply" (and "vdb" where OpenVDB is built); anything else throws std::invalid_argument
+// naming the value and the allowed list, or, for a format this build lacks, why.
 MeshFormat parseMeshFormat(const std::string& text);
 // The extension without the dot: "obj", "ply".
 std::string meshExtension(MeshFormat format);
@@ -50,5 +62,6 @@ void writeObj(const std::string& path, const TriangleMesh& mesh);
 void writeMeshPly(const std::string& path, const TriangleMesh& mesh);
 
 void writeMesh(const std::string& path, MeshFormat format, const TriangleMesh& mesh);
+void writeMesh(const std::string& path, MeshFormat format, const SurfaceFrame& frame);
 
 }  // namespace weir

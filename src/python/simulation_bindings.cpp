@@ -434,7 +434,7 @@ void bindSimulation(nb::module_& m) {
                 const std::string ext = file.extension().string();
                 const FrameFormat f =
                     parseFrameFormat(format ? *format : (ext.empty() ? ext : ext.substr(1)));
-                f.entry().write(path, s.particles(), s.simulation().time());
+                f.entry().write(path, s.particles(), FrameInfo{s.simulation().time()});
             },
             nb::arg("path"), nb::arg("format") = nb::none(),
             "Writes the current state to one frame file (format from the extension unless "
