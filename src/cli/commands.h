@@ -48,6 +48,7 @@ struct RunOptions {
     bool quiet = false;
     bool render = false;     // also render each frame to <out>/images/ (weir_render)
     bool mesh = false;       // also write each frame's surface to <out>/mesh/
+    bool usd = false;        // also write <out>/frames.usda after the last frame
     bool overwrite = false;  // replace the frames of an earlier run in outDir
 };
 
@@ -119,6 +120,18 @@ struct MeshOptions {
     std::string frames;                 // --frames A:B: frames A to B
 };
 
+// `weir usd` and `weir run --usd`: a run's frames (and surface meshes) as one USD stage.
+struct UsdOptions {
+    std::string framesDir;
+    std::string outPath;  // empty: <framesDir>/frames.usda
+    std::string meshDir;  // surface_NNNNN.ply/.obj; empty: <framesDir>/mesh
+    bool noMeshes = false;
+    std::string scene;   // container and obstacles; empty: the run's own (frames.json)
+    double spacing = 0;  // particle spacing [m]; 0: the run's, else measured on the first frame
+    std::optional<std::int64_t> frame;  // --frame N: only this frame
+    std::string frames;                 // --frames A:B: frames A to B
+};
+
 struct ViewOptions {
     std::string scene;
     std::string backend = "auto";
@@ -175,6 +188,9 @@ int meshCommand(const MeshOptions& options);
 // `weir run --mesh`: writes <out>/mesh/surface_NNNNN.{obj,ply} for every frame. Throws
 // std::invalid_argument for bad options.
 std::unique_ptr<RunObserver> makeRunMesher(const MeshOptions& options);
+int usdCommand(const UsdOptions& options);
+// `weir run --usd`: after the run's last frame, <out>/frames.usda (or options.outPath).
+std::unique_ptr<RunObserver> makeRunUsdWriter(const UsdOptions& options);
 // Times drawing particles as point sprites, for weir bench's rendering row (paper Tables 1-3);
 // made by src/render/ where rendering is built.
 class SpriteDrawTimer {

@@ -60,7 +60,7 @@ CLI::Validator frameFormatValidator() {
         "FORMAT", "frame format");
 }
 
-// FRAMES_DIR of the commands that read a run's frames (render, mesh).
+// FRAMES_DIR of the commands that read a run's frames (render, mesh, usd).
 void addFramesDirectory(CLI::App* cmd, std::string& dir) {
     cmd->add_option("FRAMES_DIR", dir, "Frames directory written by `weir run` (holds frames.json)")
         ->required();
@@ -198,6 +198,10 @@ int weirMain(int argc, char** argv) {
                      "Also write every frame's surface to OUT/mesh/surface_NNNNN.obj/.ply");
     runCmd->add_option("--mesh-format", runMesh.formats, "With --mesh: " + meshFormatHelp())
         ->capture_default_str();
+    UsdOptions runUsd;
+    runCmd->add_flag("--usd", run.usd,
+                     "Also write all frames (and, with --mesh, the surfaces) as one USD stage, "
+                     "OUT/frames.usda, after the last frame");
     runCmd->add_option("--cell-size", runMesh.cellSize,
                        "With --mesh or --format vdb: marching-cubes cell and voxel in metres "
                        "(default half the spacing)");
@@ -299,6 +303,22 @@ int weirMain(int argc, char** argv) {
         ->capture_default_str();
     meshCmd->add_flag("--quiet,-q", mesh.quiet, "No progress line");
     addFrameSelection(meshCmd, mesh.frame, mesh.frames);
+
+    UsdOptions usd;
+    CLI::App* usdCmd = app.add_subcommand(
+        "usd",
+        "Write a run's frames, its surface meshes (weir mesh) and its container and obstacles as "
+        "one USD stage (.usda, time-sampled) for Blender, Houdini and usdview");
+    addFramesDirectory(usdCmd, usd.framesDir);
+    usdCmd->add_option("--out,-o", usd.outPath, "The stage (default FRAMES/frames.usda)");
+    usdCmd->add_option("--mesh-dir", usd.meshDir,
+                       "Where the surface_NNNNN.ply/.obj meshes are (default FRAMES/mesh)");
+    usdCmd->add_flag("--no-meshes", usd.noMeshes, "Leave the surface meshes out");
+    usdCmd->add_option("--scene", usd.scene,
+                       "Scene whose container and obstacles go in (default: the run's own)");
+    usdCmd->add_option("--spacing", usd.spacing,
+                       "Particle spacing in metres: the points' width (default: the run's)");
+    addFrameSelection(usdCmd, usd.frame, usd.frames);
 
     ViewOptions view;
     CLI::App* viewCmd = app.add_subcommand(
@@ -450,6 +470,9 @@ int weirMain(int argc, char** argv) {
                 runMesh.backend = run.backend;
                 observers.add(makeRunMesher(runMesh));
             }
+            if (run.usd) {
+                observers.add(makeRunUsdWriter(runUsd));
+            }
             return runCommand(run, observers.empty() ? nullptr : &observers);
         } catch (const std::invalid_argument& e) {
             std::cerr << "weir: error: " << e.what() << "\n";
@@ -474,6 +497,9 @@ int weirMain(int argc, char** argv) {
     }
     if (meshCmd->parsed()) {
         return meshCommand(mesh);
+    }
+    if (usdCmd->parsed()) {
+        return usdCommand(usd);
     }
     if (benchCmd->parsed()) {
         std::unique_ptr<SpriteDrawTimer> spriteTimer;

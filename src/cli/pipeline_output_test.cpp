@@ -1,5 +1,5 @@
 // End-to-end tests of the output that artists' tools open (issue 22): frame numbers from 1, ids,
-// OpenVDB frames and meshes, and damaged VDB files given to weir mesh and weir render.
+// OpenVDB frames and meshes, the USD stage, and damaged VDB files given to weir mesh.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -106,6 +106,38 @@ TEST_F(Cli, ATruncatedOrForeignVdbFrameIsRefusedNamingIt) {
         EXPECT_FALSE(fs::exists(dir_ / "v" / "images" / "frame_00001.png"));
 #endif
     }
+}
+
+// weir writes USD stages but reads no USD: a frames.json that lists one (made by hand or by
+// another tool) gets an error naming the file and the formats weir reads.
+TEST_F(Cli, AUsdFileListedAsAFrameIsRefusedNamingIt) {
+    fs::create_directories(dir_ / "u");
+    writeFile("u/frames.json",
+              R"({"frames": [{"index": 0, "time": 0, "file": "frame_00000.usda"}]})");
+    writeFile("u/frame_00000.usda", "#usda 1.0\n");
+    const RunResult mesh = weir("mesh u --quiet");
+    EXPECT_EQ(mesh.exitCode, 1) << mesh.output;
+    EXPECT_TRUE(contains(mesh.output, "frame_00000.usda': unknown frame format '.usda'"));
+}
+
+TEST_F(Cli, UsdStageOfARunIsWrittenAtomically) {
+    writeFile("tiny.json", kTinyDrawScene);
+    const RunResult run = weir(std::string(kTinyRun) + " --frames 2 --usd --out frames");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_TRUE(contains(run.output, "frames.usda: 3 frames (particles, container and obstacles)"));
+    EXPECT_EQ(entries(dir_ / "frames"),
+              (std::vector<std::string>{"frame.pvd", "frame_00000.vtu", "frame_00001.vtu",
+                                        "frame_00002.vtu", "frames.json", "frames.usda"}));
+    const std::string stage = fileText(dir_ / "frames" / "frames.usda");
+    EXPECT_EQ(stage.rfind("#usda 1.0\n", 0), 0u);
+    EXPECT_TRUE(contains(stage, "startTimeCode = 0\n"));
+    EXPECT_TRUE(contains(stage, "endTimeCode = 2\n"));
+    EXPECT_TRUE(contains(stage, "def Points \"particles\""));
+    EXPECT_TRUE(contains(stage, "            2: [0, 1, 2, 3, "));  // the ids of frame 2
+    // An unwritable stage: exit 1 naming it, nothing left behind.
+    const RunResult bad = weir("usd frames --out frames/no/such/dir/s.usda");
+    EXPECT_EQ(bad.exitCode, 1) << bad.output;
+    EXPECT_TRUE(contains(bad.output, "frames/no/such/dir/s.usda"));
 }
 
 }  // namespace

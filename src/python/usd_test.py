@@ -1,0 +1,146 @@
+"""The USD stage weir writes (weir run --usd, weir usd), read back with Pixar's USD (usd-core from
+PyPI): time samples, particle points, velocities and ids as in the frame files, the surface mesh
+with per-vertex velocities, the container and obstacles."""
+
+import json
+
+import numpy as np
+import pytest
+
+Usd = pytest.importorskip(
+    "pxr.Usd", reason="usd-core (PyPI) is not installed; scripts/setup.sh installs it")
+from pxr import UsdGeom  # noqa: E402
+
+# A small dam break with an obstacle box and sphere: 144 particles at 2 cm.
+SCENE = {
+    "name": "tiny_usd",
+    "container": {"min": [0, 0, 0], "max": [0.3, 0.2, 0.08]},
+    "blocks": [{"min": [0, 0, 0], "max": [0.12, 0.12, 0.08]}],
+    "obstacles": {"boxes": [{"min": [0.2, 0, 0.02], "max": [0.25, 0.05, 0.06]}],
+                  "spheres": [{"center": [0.2, 0.15, 0.04], "radius": 0.02}]},
+    "particles": {"spacing": 0.02},
+    "time": {"duration": 1, "frameRate": 30},
+}
+
+
+@pytest.fixture(scope="module")
+def run(cli, tmp_path_factory):
+    """weir run --usd --mesh, CSV frames numbered from 1 (frames 1..4)."""
+    root = tmp_path_factory.mktemp("usd")
+    (root / "scene.json").write_text(json.dumps(SCENE))
+    out = root / "out"
+    cli("run", root / "scene.json", "--backend", "cpu", "--quiet", "--frames", 3, "--format",
+        "csv", "--first-frame-number", 1, "--mesh", "--mesh-format", "ply", "--usd", "--out", out)
+    return out
+
+
+def read_csv(path):
+    table = np.genfromtxt(path, delimiter=",", names=True, dtype=np.float32)
+    return {name: table[name] for name in table.dtype.names}
+
+
+def test_stage_has_the_runs_frames_as_time_samples(run):
+    stage = Usd.Stage.Open(str(run / "frames.usda"))
+    assert stage.GetStartTimeCode() == 1 and stage.GetEndTimeCode() == 4
+    assert stage.GetTimeCodesPerSecond() == pytest.approx(30)
+    assert UsdGeom.GetStageUpAxis(stage) == UsdGeom.Tokens.y
+    assert UsdGeom.GetStageMetersPerUnit(stage) == 1
+    assert stage.GetDefaultPrim().GetPath() == "/weir"
+    points = UsdGeom.Points(stage.GetPrimAtPath("/weir/particles"))
+    assert points, "no Points prim /weir/particles"
+    assert points.GetPointsAttr().GetTimeSamples() == [1, 2, 3, 4]
+    for number in (1, 4):
+        frame = read_csv(run / f"frame_{number:05d}.csv")
+        x = np.array(points.GetPointsAttr().Get(number))
+        v = np.array(points.GetVelocitiesAttr().Get(number))
+        np.testing.assert_array_equal(x, np.stack([frame["x"], frame["y"], frame["z"]], axis=1))
+        np.testing.assert_array_equal(v,
+                                      np.stack([frame["vx"], frame["vy"], frame["vz"]], axis=1))
+        np.testing.assert_array_equal(np.array(points.GetIdsAttr().Get(number)), frame["id"])
+        density = UsdGeom.PrimvarsAPI(points).GetPrimvar("density")
+        assert density.GetInterpolation() == UsdGeom.Tokens.vertex
+        np.testing.assert_array_equal(np.array(density.Get(number)), frame["density"])
+        lo, hi = np.array(points.GetExtentAttr().Get(number))
+        assert np.all(lo <= x.min(axis=0)) and np.all(hi >= x.max(axis=0))
+    assert len(points.GetIdsAttr().Get(1)) == 144
+    assert list(points.GetWidthsAttr().Get()) == [pytest.approx(0.02)]
+    assert points.GetWidthsInterpolation() == UsdGeom.Tokens.constant
+    # Frame 4 moved: the stage is not one frame repeated.
+    assert not np.array_equal(points.GetPointsAttr().Get(1), points.GetPointsAttr().Get(4))
+
+
+def test_surface_mesh_has_per_vertex_velocities(run):
+    stage = Usd.Stage.Open(str(run / "frames.usda"))
+    mesh = UsdGeom.Mesh(stage.GetPrimAtPath("/weir/surface"))
+    assert mesh, "no Mesh prim /weir/surface"
+    assert mesh.GetSubdivisionSchemeAttr().Get() == UsdGeom.Tokens.none
+    for number in (1, 4):
+        x = np.array(mesh.GetPointsAttr().Get(number))
+        counts = np.array(mesh.GetFaceVertexCountsAttr().Get(number))
+        indices = np.array(mesh.GetFaceVertexIndicesAttr().Get(number))
+        v = np.array(mesh.GetVelocitiesAttr().Get(number))
+        assert len(x) > 100 and np.all(counts == 3) and len(indices) == 3 * len(counts)
+        assert indices.min() >= 0 and indices.max() < len(x)
+        assert v.shape == x.shape and len(mesh.GetNormalsAttr().Get(number)) == len(x)
+        # The mesh of weir mesh's PLY file, vertex for vertex.
+        ply = (run / "mesh" / f"surface_{number:05d}.ply").read_bytes()
+        assert f"element vertex {len(x)}\n".encode() in ply
+        # A vertex's velocity is a weighted mean of particle velocities: never faster than the
+        # fastest particle; at rest (frame 1) zero.
+        frame = read_csv(run / f"frame_{number:05d}.csv")
+        fastest = np.sqrt(frame["vx"] ** 2 + frame["vy"] ** 2 + frame["vz"] ** 2).max()
+        assert np.linalg.norm(v, axis=1).max() <= fastest * (1 + 1e-5)
+        if number == 1:
+            assert np.all(v == 0)
+        else:
+            assert np.mean(v[:, 1]) < -0.05  # the column falls
+    assert mesh.GetPointsAttr().GetTimeSamples() == [1, 2, 3, 4]
+
+
+def test_container_and_obstacles_are_in_place(run):
+    stage = Usd.Stage.Open(str(run / "frames.usda"))
+
+    def world_box(path):
+        prim = stage.GetPrimAtPath(path)
+        assert prim, f"no prim {path}"
+        cache = UsdGeom.BBoxCache(Usd.TimeCode.Default(),
+                                  [UsdGeom.Tokens.default_, UsdGeom.Tokens.guide])
+        box = cache.ComputeWorldBound(prim).ComputeAlignedRange()
+        return np.array(box.GetMin()), np.array(box.GetMax())
+
+    container = stage.GetPrimAtPath("/weir/container")
+    assert container.GetTypeName() == "Cube"
+    assert UsdGeom.Imageable(container).GetPurposeAttr().Get() == UsdGeom.Tokens.guide
+    for path, lo, hi in [("/weir/container", [0, 0, 0], [0.3, 0.2, 0.08]),
+                         ("/weir/obstacles/box_0", [0.2, 0, 0.02], [0.25, 0.05, 0.06]),
+                         ("/weir/obstacles/sphere_0", [0.18, 0.13, 0.02], [0.22, 0.17, 0.06])]:
+        got_lo, got_hi = world_box(path)
+        np.testing.assert_allclose(got_lo, lo, atol=1e-6, err_msg=path)
+        np.testing.assert_allclose(got_hi, hi, atol=1e-6, err_msg=path)
+    assert stage.GetPrimAtPath("/weir/obstacles/sphere_0").GetTypeName() == "Sphere"
+
+
+def test_weir_usd_rewrites_a_selection_and_refuses_a_damaged_frame(cli, run, tmp_path):
+    stage_path = tmp_path / "two.usda"
+    cli("usd", run, "--frames", "2:3", "--no-meshes", "--out", stage_path)
+    stage = Usd.Stage.Open(str(stage_path))
+    assert stage.GetStartTimeCode() == 2 and stage.GetEndTimeCode() == 3
+    assert not stage.GetPrimAtPath("/weir/surface")
+    assert UsdGeom.Points(stage.GetPrimAtPath("/weir/particles")).GetPointsAttr() \
+        .GetTimeSamples() == [2, 3]
+
+    damaged = tmp_path / "damaged"
+    damaged.mkdir()
+    for name in ["frames.json", "frame_00001.csv", "frame_00002.csv"]:
+        (damaged / name).write_bytes((run / name).read_bytes())
+    text = (damaged / "frame_00002.csv").read_text()
+    cut = len(text) // 2
+    while text[cut - 1] == "\n":  # end mid-line: a truncated file, not a shorter one
+        cut += 1
+    (damaged / "frame_00002.csv").write_text(text[:cut])
+    done = cli("usd", damaged, "--frames", "1:2", check=False)
+    assert done.returncode == 1
+    assert "frame_00002.csv" in done.stderr and "cannot read" in done.stderr
+    # Nothing half-written is left: no stage, no temporaries.
+    assert sorted(p.name for p in damaged.iterdir()) == ["frame_00001.csv", "frame_00002.csv",
+                                                         "frames.json"]
