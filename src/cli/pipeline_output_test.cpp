@@ -134,6 +134,13 @@ TEST_F(Cli, UsdStageOfARunIsWrittenAtomically) {
     EXPECT_TRUE(contains(stage, "endTimeCode = 2\n"));
     EXPECT_TRUE(contains(stage, "def Points \"particles\""));
     EXPECT_TRUE(contains(stage, "            2: [0, 1, 2, 3, "));  // the ids of frame 2
+    // --overwrite removes the earlier run's stage with its frames.
+    const RunResult again = weir(std::string(kTinyRun) + " --frames 0 --overwrite --out frames");
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    EXPECT_EQ(entries(dir_ / "frames"),
+              (std::vector<std::string>{"frame.pvd", "frame_00000.vtu", "frames.json"}));
+    ASSERT_EQ(weir(std::string(kTinyRun) + " --frames 1 --usd --overwrite --out frames").exitCode,
+              0);
     // An unwritable stage: exit 1 naming it, nothing left behind.
     const RunResult bad = weir("usd frames --out frames/no/such/dir/s.usda");
     EXPECT_EQ(bad.exitCode, 1) << bad.output;

@@ -8,6 +8,7 @@
 #include "io/atomic_file.h"
 #include "io/frame_formats.h"
 #include "io/frame_index.h"
+#include "io/mesh_writer.h"
 
 namespace weir {
 
@@ -75,14 +76,18 @@ std::size_t removeEarlierRun(const std::string& dir) {
     if (fs::is_directory(root, ec)) {
         for (const auto& entry : fs::directory_iterator(root, ec)) {
             const std::string name = entry.path().filename().string();
-            if (entry.is_regular_file(ec) &&
-                (isFrameFile(name) || name == "frame.pvd" || name == "frames.json")) {
+            if (entry.is_regular_file(ec) && (isFrameFile(name) || name == "frame.pvd" ||
+                                              name == "frames.json" || name == "frames.usda")) {
                 removed += fs::remove(entry.path(), ec) ? 1 : 0;
             }
         }
     }
     removed += removeMatching(root / "images", std::regex(R"(frame_\d{5,}\.png)"));
-    removed += removeMatching(root / "mesh", std::regex(R"(surface_\d{5,}\.(obj|ply))"));
+    std::string meshFiles = R"(surface_\d{5,}\.()";  // surface_NNNNN.(obj|ply|...)
+    for (const MeshFormatEntry& entry : meshFormatTable()) {
+        meshFiles.append(meshFiles.back() == '(' ? "" : "|").append(entry.name);
+    }
+    removed += removeMatching(root / "mesh", std::regex(meshFiles.append(")")));
     return removed;
 }
 

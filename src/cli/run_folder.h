@@ -18,7 +18,8 @@ struct EarlierRun {
 std::optional<EarlierRun> findEarlierRun(const std::string& dir);
 
 // Removes what a run writes into dir and nothing else: its frame files, frame.pvd, frames.json,
-// and the images/frame_NNNNN.png and mesh/surface_NNNNN.{obj,ply} of --render and --mesh.
+// the frames.usda of --usd, and the images/frame_NNNNN.png and mesh/surface_NNNNN.<mesh format>
+// of --render and --mesh.
 // Returns how many files it removed.
 std::size_t removeEarlierRun(const std::string& dir);
 
