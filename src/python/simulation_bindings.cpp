@@ -192,6 +192,7 @@ void run(nb::handle self, std::optional<std::int64_t> frames, nb::handle onFrame
     std::unique_ptr<FrameWriter> writer;
     if (out) {
         writer = std::make_unique<FrameWriter>(out->string(), parseFrameFormat(format));
+        writer->setScale(sim.report().spacing, 0);  // vdb frames: the run's spacing, voxel d / 2
     }
     std::vector<MeshFormat> meshes;
     for (const std::string& name : meshFormats) {
@@ -224,8 +225,11 @@ void run(nb::handle self, std::optional<std::int64_t> frames, nb::handle onFrame
                 nb::gil_scoped_release release;
                 mesh = sim.surface(sim.simulation().backend(), SurfaceOptions{});
             }
+            // The frame beside the mesh, for vdb surfaces (level set, velocity and points).
+            const SurfaceFrame frame{mesh, &sim.particles(), sim.report().spacing,
+                                     sim.report().spacing / 2, time};
             for (MeshFormat f : meshes) {
-                writeMesh((std::filesystem::path(meshDir) / meshFileName(k, f)).string(), f, mesh);
+                writeMesh((std::filesystem::path(meshDir) / meshFileName(k, f)).string(), f, frame);
             }
         }
         if (onFrame.is_valid() && !onFrame.is_none()) {

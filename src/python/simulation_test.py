@@ -157,7 +157,7 @@ def test_an_exception_in_the_callback_stops_the_run():
     assert sim.time == pytest.approx(sim.frame_interval, abs=1e-7)
 
 
-def test_every_frame_and_mesh_format_is_written(tmp_path, dam_break_small):
+def test_every_frame_and_mesh_format_is_written(tmp_path, dam_break_small, cli):
     sim = dam_break_small
     sim.step(10)
     # vdb where the module was built with OpenVDB.
@@ -190,6 +190,12 @@ def test_every_frame_and_mesh_format_is_written(tmp_path, dam_break_small):
     if "vdb" in weir.mesh_formats():  # a level set needs the frame's particles beside the mesh
         with pytest.raises(ValueError, match="needs the frame's particles"):
             mesh.write(str(tmp_path / "surface.vdb"))
+        # run() has them: vdb frames and vdb surfaces; the weir command reads the frames back.
+        sim.run(frames=0, out=str(tmp_path / "run_vdb"), format="vdb", mesh=["vdb"])
+        surface = next((tmp_path / "run_vdb" / "mesh").glob("surface_*.vdb"))
+        assert surface.stat().st_size > 1000
+        cli("mesh", tmp_path / "run_vdb", "--format", "obj", "--out", tmp_path / "again")
+        assert len(list((tmp_path / "again").glob("surface_*.obj"))) == 1
     with pytest.raises(ValueError, match="stl"):
         mesh.write(str(tmp_path / "surface.stl"))
     text = (tmp_path / "surface.obj").read_text()
