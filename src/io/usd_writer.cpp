@@ -74,7 +74,10 @@ class Spool {
     std::size_t bytes_ = 0;
 };
 
-std::string number(double value) { return numberText(float(value)); }
+// The shortest text of the float; NaN as "nan" whatever its sign (USD's parser refuses "-nan").
+std::string number(double value) {
+    return std::isnan(value) ? std::string("nan") : numberText(float(value));
+}
 
 std::string vec(double x, double y, double z) {
     std::string text(1, '(');  // appended piece by piece: GCC 12 warns on "(" + string (-Wrestrict)

@@ -144,3 +144,21 @@ def test_weir_usd_rewrites_a_selection_and_refuses_a_damaged_frame(cli, run, tmp
     # Nothing half-written is left: no stage, no temporaries.
     assert sorted(p.name for p in damaged.iterdir()) == ["frame_00001.csv", "frame_00002.csv",
                                                          "frames.json"]
+
+
+def test_non_finite_values_stay_readable(cli, tmp_path):
+    """A frame (written by another tool) whose velocities hold NaN of either sign and infinities:
+    the stage still opens, with the same values (USD reads 'nan', not '-nan')."""
+    frames = tmp_path / "frames"
+    frames.mkdir()
+    (frames / "frames.json").write_text(
+        json.dumps({"frames": [{"index": 0, "time": 0, "file": "frame_00000.csv"}]}))
+    (frames / "frame_00000.csv").write_text(
+        "x,y,z,vx,vy,vz,density,pressure,id\n"
+        "0,0,0,nan,-nan,inf,1000,0,0\n"
+        "0.02,0,0,-inf,1,2,1000,0,1\n")
+    cli("usd", frames, "--spacing", 0.02)
+    stage = Usd.Stage.Open(str(frames / "frames.usda"))
+    v = np.array(UsdGeom.Points(stage.GetPrimAtPath("/weir/particles")).GetVelocitiesAttr().Get(0))
+    assert np.isnan(v[0, 0]) and np.isnan(v[0, 1]) and v[0, 2] == np.inf
+    assert v[1, 0] == -np.inf and list(v[1, 1:]) == [1, 2]
