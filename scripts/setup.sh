@@ -14,22 +14,34 @@ packages=(cmake ninja-build g++ pkg-config libgtest-dev libbenchmark-dev nlohman
           ffmpeg
           # distributed runs (mpirun -n R weir run): OpenMPI
           libopenmpi-dev openmpi-bin
-          # OpenVDB output (--format vdb, optional at build time; docs/pipeline.md): its
-          # CMake module needs Boost.Iostreams besides
-          libopenvdb-dev libboost-iostreams-dev
           # the Python module (import weir): headers and venv; nanobind, NumPy, pytest and
           # matplotlib come from PyPI into a virtual environment (below)
           python3-dev python3-venv)
-missing=()
-for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
+# Optional: OpenVDB output (--format vdb; docs/pipeline.md), whose CMake module needs
+# Boost.Iostreams besides. A machine that cannot install them builds without it.
+optional=(libopenvdb-dev libboost-iostreams-dev)
+missingFrom() {
+    local p
+    for p in "$@"; do
+        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || echo "$p"
+    done
+}
+sudo=""
+[ "$(id -u)" -ne 0 ] && sudo="sudo"
+mapfile -t missing < <(missingFrom "${packages[@]}")
 if [ ${#missing[@]} -gt 0 ]; then
     echo "weir setup: installing ${missing[*]}"
-    sudo=""
-    [ "$(id -u)" -ne 0 ] && sudo="sudo"
     $sudo apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+mapfile -t missing < <(missingFrom "${optional[@]}")
+if [ ${#missing[@]} -gt 0 ]; then
+    echo "weir setup: installing ${missing[*]} (optional: OpenVDB output)"
+    if ! { $sudo apt-get update -qq &&
+           DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null; }
+    then
+        echo "weir setup: could not install ${missing[*]}; building without OpenVDB"
+    fi
 fi
 
 # CUDA is optional: use nvcc if it is on PATH or in the usual place.
