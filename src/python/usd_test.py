@@ -162,3 +162,21 @@ def test_non_finite_values_stay_readable(cli, tmp_path):
     v = np.array(UsdGeom.Points(stage.GetPrimAtPath("/weir/particles")).GetVelocitiesAttr().Get(0))
     assert np.isnan(v[0, 0]) and np.isnan(v[0, 1]) and v[0, 2] == np.inf
     assert v[1, 0] == -np.inf and list(v[1, 1:]) == [1, 2]
+
+
+def test_a_scenes_mesh_obstacle_is_placed(cli, repo, tmp_path):
+    """examples/showcase.json's rock (an OBJ scaled by 0.1 and moved to (0.6, 0, 0.3)) becomes a
+    Mesh with the file's faces where the scene puts it."""
+    out = tmp_path / "showcase"
+    cli("run", repo / "examples" / "showcase.json", "--backend", "cpu", "--particles", 3000,
+        "--frames", 0, "--quiet", "--usd", "--out", out)
+    stage = Usd.Stage.Open(str(out / "frames.usda"))
+    rock = UsdGeom.Mesh(stage.GetPrimAtPath("/weir/obstacles/mesh_0"))
+    assert rock, "no Mesh /weir/obstacles/mesh_0"
+    obj = (repo / "examples" / "rock.obj").read_text().splitlines()
+    vertices = np.array([[float(x) for x in line.split()[1:4]] for line in obj
+                         if line.startswith("v ")])
+    assert len(rock.GetPointsAttr().Get()) == len(vertices)
+    assert len(rock.GetFaceVertexCountsAttr().Get()) == sum(l.startswith("f ") for l in obj)
+    np.testing.assert_allclose(np.array(rock.GetPointsAttr().Get()),
+                               vertices * 0.1 + [0.6, 0, 0.3], atol=1e-6)
