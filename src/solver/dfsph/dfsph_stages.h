@@ -34,7 +34,7 @@ namespace weir {
 // that the iterations test convergence with no host round trip; and what a frame's log reports.
 struct DfsphMonitor {
     float errorSum;  // this iteration's sum of per-particle errors (the backend's reduction)
-    int done;        // this solve has converged or run out of iterations
+    int done;  // 0: sweeping; kDfsphLastSweep: this sweep's update is the solve's last; kDfsphDone
     int iterations;  // velocity updates of this solve so far
     // Since the last read by the host (one frame's worth):
     long long totalIterations;  // velocity updates over all solves
@@ -43,6 +43,13 @@ struct DfsphMonitor {
     int unconverged;            // solves that stopped at the iteration limit
     float worstError;           // the largest mean error a solve ended with
 };
+
+// A solve's states after sweeping (DfsphMonitor::done): the sweep whose prediction met the
+// tolerance still applies its update, so that the stiffness summed for the warm start is the one
+// applied (measured: leaving the last prediction unapplied left the sum 20% above the pressure that
+// held a tank at rest); every stage of a later sweep returns at once.
+constexpr int kDfsphLastSweep = 1;
+constexpr int kDfsphDone = 2;
 
 // Fewer neighbours than this (the full lattice has about 33 at h = 2 d): a particle at a free
 // surface or in spray, whose density rate the divergence-free solver leaves alone (Bender &
@@ -223,10 +230,10 @@ constexpr Real kDfsphReleaseRelaxation = Real(0.5);
 // sweeps overshoot both ways and grow (measured: a tank at rest blew up in its first step). The
 // error for the mean is |excess| / rho0 where i holds a stiffness, the compression alone where it
 // holds none (a free surface, light by summation, is no error). accumulated keeps the sum for the
-// next step's warm start, in a form that does not depend on dt: kappa itself for the density solve
-// (a steady pressure field p = rho kappa holds whatever the step), kappa dt for the divergence
-// solve (the velocity it removes, dt kappa / h, does not depend on dt). Nothing once the solve is
-// done.
+// next step's warm start as kappa itself, for both solves: a steady pressure field p = rho kappa
+// holds whatever the step. (Kept as an impulse, dt kappa, the divergence solve's share of a tank's
+// hydrostatic load, a third of it, was applied over less time in a step cut short to land on a
+// frame: the pressure read 1.15-1.30 of rho0 g depth.) Nothing once the solve is done.
 template <class Neighbours>
 WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                    const SphParams& p, const Real4* vel, const Real* factor,
@@ -242,12 +249,10 @@ WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighb
     Real k = excess * factor[i] / (dt * dt);
     k = excess < Real(0) ? k * kDfsphReleaseRelaxation : k;
     const Real before = accumulated[i];
-    Real stored = divergence ? k * dt : k;
-    if (before + stored < Real(0)) {
-        stored = -before;
-        k = divergence ? stored / dt : stored;
+    if (before + k < Real(0)) {
+        k = -before;
     }
-    const Real after = before + stored;
+    const Real after = before + k;
     accumulated[i] = after;
     kappaOverRho[i] = k * reciprocal(vel[i].w);
     const Real counted = after > Real(0) ? fabs(excess) : (excess > Real(0) ? excess : Real(0));
@@ -262,8 +267,8 @@ WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighb
 // would push on for as long as it is carried. (Half of it, only where compressed, as SPlisHSPlasH
 // starts, took 23-32 sweeps a step on a 1M dam break on the H200 against 2: each step rebuilt half
 // the column's pressure.)
-WEIR_HD inline void dfsphWarmStartAt(Index i, const Real4* vel, bool divergence, Real share,
-                                     const StepClock* clock, Real* kappaOverRho, Real* accumulated,
+WEIR_HD inline void dfsphWarmStartAt(Index i, const Real4* vel, Real share, const StepClock* clock,
+                                     Real* kappaOverRho, Real* accumulated,
                                      const unsigned char* interior) {
     const Real dt = clock->dt;
     if (dt == Real(0)) {
@@ -271,21 +276,24 @@ WEIR_HD inline void dfsphWarmStartAt(Index i, const Real4* vel, bool divergence,
     }
     const Real warm = accumulated[i];
     const Real start = warm > Real(0) && interior[i] != 0 ? share * warm : Real(0);
-    kappaOverRho[i] = (divergence ? start / dt : start) * reciprocal(vel[i].w);
+    kappaOverRho[i] = start * reciprocal(vel[i].w);
     accumulated[i] = start;
 }
 
 // One thread, after the errors' sum: the iteration's mean error against the tolerance. The solve
-// is done once it is under it after at least minIterations updates, or at maxIterations.
+// ends with this sweep's update once the error is under it and that update is at least the
+// minIterations-th, or is the maxIterations-th.
 WEIR_HD inline void dfsphCheck(DfsphMonitor* monitor, Index count, Real tolerance,
                                int minIterations, int maxIterations) {
     if (monitor->done != 0) {
+        monitor->done = kDfsphDone;
         return;
     }
     const float mean = count > 0 ? monitor->errorSum / float(count) : 0.0f;
-    const bool converged = mean <= float(tolerance) && monitor->iterations >= minIterations;
-    if (converged || monitor->iterations >= maxIterations) {
-        monitor->done = 1;
+    const bool converged = mean <= float(tolerance) && monitor->iterations + 1 >= minIterations;
+    if (converged || monitor->iterations + 1 >= maxIterations) {
+        monitor->done = kDfsphLastSweep;
+        monitor->iterations += 1;
         monitor->totalIterations += monitor->iterations;
         monitor->solves += 1;
         monitor->maxIterations = monitor->iterations > monitor->maxIterations
@@ -300,7 +308,7 @@ WEIR_HD inline void dfsphCheck(DfsphMonitor* monitor, Index count, Real toleranc
 
 // One thread, before a solve: its state reset (done at once in a no-op step).
 WEIR_HD inline void dfsphBeginSolve(DfsphMonitor* monitor, const StepClock* clock) {
-    monitor->done = clock->dt == Real(0) ? 1 : 0;
+    monitor->done = clock->dt == Real(0) ? kDfsphDone : 0;
     monitor->iterations = 0;
 }
 
@@ -314,7 +322,7 @@ template <class Neighbours>
 WEIR_HD inline void dfsphUpdateAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                   const SphParams& p, Real4* vel, const Real* kappaOverRho,
                                   const StepClock* clock, const DfsphMonitor* monitor) {
-    if (monitor->done != 0) {
+    if (monitor->done == kDfsphDone) {
         return;
     }
     const Vec3 xi = pv.position(i);
