@@ -98,8 +98,9 @@ struct RenderOptions {
                            // (recorded in frames.json), else none
     std::string video;     // an .mp4 made from the images with ffmpeg; empty: none
     bool surface = false;  // draw the marching-cubes surface instead of particles
-    std::string backend = "auto";  // where the surface is reconstructed
-    double spacing = 0;            // particle spacing [m]; 0: from the scene or the first frame
+    std::string backend = "auto";            // where the surface is reconstructed
+    std::string surfaceField = "isotropic";  // isotropic or anisotropic (surface/surface.h)
+    double spacing = 0;  // particle spacing [m]; 0: from the scene or the first frame
     int samples = 4;
     bool quiet = false;
     std::optional<std::int64_t> frame;  // --frame N: only this frame
@@ -115,6 +116,7 @@ struct MeshOptions {
     double spacing = 0;   // particle spacing [m]; 0: estimated from the first frame (or the run)
     double cellSize = 0;  // marching-cubes cell [m]; 0: half the spacing
     double iso = 0;       // in particle spacings; > 0 inflates
+    std::string surfaceField = "isotropic";  // isotropic or anisotropic (surface/surface.h)
     bool quiet = false;
     std::optional<std::int64_t> frame;  // --frame N: only this frame
     std::string frames;                 // --frames A:B: frames A to B

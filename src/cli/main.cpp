@@ -76,6 +76,17 @@ void addFrameSelection(CLI::App* cmd, std::optional<std::int64_t>& frame, std::s
 }
 
 // The drawing options `weir render` and `weir run --render` share.
+// --surface-field isotropic|anisotropic, for the commands that build surfaces.
+void addSurfaceField(CLI::App* cmd, std::string& field, const std::string& lead) {
+    cmd->add_option("--surface-field", field,
+                    lead +
+                        "isotropic (Zhu & Bridson's blobs, the default) or anisotropic (Yu & "
+                        "Turk's kernels stretched along the fluid: thin sheets stay thin, flat "
+                        "water flat; docs/surfaces.md)")
+        ->check(CLI::IsMember({"isotropic", "anisotropic"}))
+        ->capture_default_str();
+}
+
 void addImageOptions(CLI::App* cmd, weir::RenderOptions& o) {
     cmd->add_option("--width", o.width, "Image width in pixels")
         ->check(CLI::Range(16, 16384))
@@ -202,6 +213,8 @@ int weirMain(int argc, char** argv) {
     runCmd->add_flag("--usd", run.usd,
                      "Also write all frames (and, with --mesh, the surfaces) as one USD stage, "
                      "OUT/frames.usda, after the last frame");
+    addSurfaceField(runCmd, runMesh.surfaceField,
+                    "With --mesh (and --render --surface): the surface field, ");
     runCmd->add_option("--cell-size", runMesh.cellSize,
                        "With --mesh or --format vdb: marching-cubes cell and voxel in metres "
                        "(default half the spacing)");
@@ -266,6 +279,7 @@ int weirMain(int argc, char** argv) {
                           "the particles)");
     renderCmd->add_flag("--surface", render.surface,
                         "Draw the fluid's surface (marching cubes) instead of particles");
+    addSurfaceField(renderCmd, render.surfaceField, "With --surface: the surface field, ");
     renderCmd
         ->add_option("--backend", render.backend,
                      "Where --surface is reconstructed: auto, cuda or cpu")
@@ -301,6 +315,7 @@ int weirMain(int argc, char** argv) {
         ->add_option("--iso", mesh.iso,
                      "Iso-value in particle spacings: 0 is the fluid surface, > 0 inflates it")
         ->capture_default_str();
+    addSurfaceField(meshCmd, mesh.surfaceField, "The surface field, ");
     meshCmd->add_flag("--quiet,-q", mesh.quiet, "No progress line");
     addFrameSelection(meshCmd, mesh.frame, mesh.frames);
 
@@ -456,6 +471,7 @@ int weirMain(int argc, char** argv) {
 #if defined(WEIR_HAS_RENDER)
                 runRender.backend = run.backend;
                 runRender.quiet = run.quiet;
+                runRender.surfaceField = runMesh.surfaceField;
                 observers.add(makeRunRenderer(runRender));
 #else
                 std::cerr << kNoRendering;

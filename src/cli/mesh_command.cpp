@@ -129,6 +129,7 @@ SurfaceOptions surfaceOptions(const MeshOptions& o, double spacing) {
     s.spacing = spacing;
     s.cellSize = o.cellSize;
     s.iso = o.iso;
+    s.field = parseSurfaceField(o.surfaceField);
     return s;
 }
 
@@ -203,7 +204,7 @@ int meshCommand(const MeshOptions& options) {
                       << (frames.size() == 1 ? "" : "s") << " of " << options.framesDir << " to "
                       << outDir << "/ (spacing " << rounded(spacing, 3) << " m, cell "
                       << rounded(options.cellSize > 0 ? options.cellSize : spacing / 2, 3) << " m, "
-                      << backendName(backend) << ")\n";
+                      << options.surfaceField << " field, " << backendName(backend) << ")\n";
         }
         ItemProgress progress("mesh", frames.size(), options.quiet);
         for (std::size_t i = 0; i < frames.size(); ++i) {

@@ -122,6 +122,17 @@ TEST_F(MeshCli, MeshCommandMeshesAnExistingRun) {
     expectClosedOutwardMesh(fine, "fine surface_00000.obj");
     EXPECT_GT(fine.triangleCount(), first.triangleCount() * 3 / 2);
     EXPECT_NEAR(measureMesh(fine).volume / measureMesh(first).volume, 1.0, 0.03);
+
+    // Yu & Turk's anisotropic kernels: a closed block, each face 0.3 d in (the smoothed centres,
+    // anisotropy.h): 5.4 x 7.4 x 4.4 of the 6 x 8 x 5 spacings, 0.73 of the volume.
+    const RunResult aniso =
+        weir("mesh frames --format ply --backend cpu --surface-field anisotropic --out aniso");
+    ASSERT_EQ(aniso.exitCode, 0) << aniso.output;
+    EXPECT_TRUE(contains(aniso.output, "anisotropic field"));
+    const TriangleMesh anisotropic = readMesh(path("aniso/surface_00000.ply"));
+    expectClosedOutwardMesh(anisotropic, "anisotropic surface_00000.ply");
+    EXPECT_NEAR(measureMesh(anisotropic).volume / kBlockVolume, 0.73, 0.05);
+    EXPECT_NE(anisotropic.vertexCount(), first.vertexCount());
 }
 
 TEST_F(MeshCli, BadInputIsRefusedWithTheValue) {
@@ -144,13 +155,20 @@ TEST_F(MeshCli, BadInputIsRefusedWithTheValue) {
     EXPECT_EQ(iso.exitCode, 2) << iso.output;
     EXPECT_TRUE(contains(iso.output, "iso-value is 9"));
 
+    const RunResult field = weir("mesh frames --surface-field blobby");
+    EXPECT_EQ(field.exitCode, 2) << field.output;
+    EXPECT_TRUE(contains(field.output, "--surface-field")) << field.output;
+    EXPECT_TRUE(contains(field.output, "blobby")) << field.output;
+    EXPECT_TRUE(contains(field.output, "anisotropic")) << field.output;
+
     const RunResult runFormat = weir("run block.json --frames 0 --mesh --mesh-format vtk");
     EXPECT_EQ(runFormat.exitCode, 2) << runFormat.output;
     EXPECT_TRUE(contains(runFormat.output, "'vtk'"));
 
     const RunResult help = weir("mesh --help");
     EXPECT_EQ(help.exitCode, 0);
-    for (const char* option : {"--format", "--backend", "--cell-size", "--iso", "--spacing"}) {
+    for (const char* option :
+         {"--format", "--backend", "--cell-size", "--iso", "--spacing", "--surface-field"}) {
         EXPECT_TRUE(contains(help.output, option));
     }
 }

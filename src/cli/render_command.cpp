@@ -81,7 +81,8 @@ class FrameImager {
           camera_(camera),
           field_(parseColourField(options.color)),
           surface_(options.surface),
-          surfaceBackend_(parseBackend(options.backend)) {
+          surfaceBackend_(parseBackend(options.backend)),
+          surfaceField_(parseSurfaceField(options.surfaceField)) {
         fs::create_directories(imagesDir_);
         renderer_.setGeometry(geometry);
         renderer_.setSamples(options.samples);
@@ -98,6 +99,7 @@ class FrameImager {
         if (surface_) {
             SurfaceOptions options;
             options.spacing = 2 * radius_;
+            options.field = surfaceField_;
             const auto meshStart = Clock::now();
             renderer_.setMesh(reconstructSurface(surfaceBackend_, particles, options));
             meshSeconds_ += secondsSince(meshStart);
@@ -131,6 +133,7 @@ class FrameImager {
     ColourField field_;
     bool surface_;
     Backend surfaceBackend_;
+    SurfaceField surfaceField_;
     double radius_ = 0.01;
     int images_ = 0;
     double seconds_ = 0, meshSeconds_ = 0;

@@ -130,8 +130,10 @@ std::string meshFileName(std::int64_t index, MeshFormat format) {
     return name;
 }
 
-SurfaceOptions surfaceOptions(std::optional<double> spacing, double cellSize, double iso) {
+SurfaceOptions surfaceOptions(std::optional<double> spacing, double cellSize, double iso,
+                              const std::string& field = "isotropic") {
     SurfaceOptions options;
+    options.field = parseSurfaceField(field);
     options.spacing = spacing.value_or(0);
     options.cellSize = cellSize;
     options.iso = iso;
@@ -420,16 +422,19 @@ void bindSimulation(nb::module_& m) {
         .def(
             "surface",
             [](ScriptedSimulation& s, std::optional<std::string> backend,
-               std::optional<double> spacing, double cellSize, double iso) {
+               std::optional<double> spacing, double cellSize, double iso,
+               const std::string& field) {
                 const Backend b = surfaceBackend(s, backend);
+                const SurfaceOptions options = surfaceOptions(spacing, cellSize, iso, field);
                 nb::gil_scoped_release release;
-                return Mesh{s.surface(b, surfaceOptions(spacing, cellSize, iso))};
+                return Mesh{s.surface(b, options)};
             },
             nb::arg("backend") = nb::none(), nb::arg("spacing") = nb::none(),
-            nb::arg("cell_size") = 0.0, nb::arg("iso") = 0.0,
+            nb::arg("cell_size") = 0.0, nb::arg("iso") = 0.0, nb::arg("field") = "isotropic",
             "The fluid's surface now, by marching cubes (as weir mesh): spacing None takes the "
             "run's particle spacing, cell_size 0 half of it, iso in particle spacings (> 0 "
-            "inflates); backend None: the simulation's.")
+            "inflates), field 'isotropic' or 'anisotropic' (weir mesh --surface-field); backend "
+            "None: the simulation's.")
         .def(
             "write_frame",
             [](ScriptedSimulation& s, const std::filesystem::path& file,

@@ -183,6 +183,12 @@ def test_every_frame_and_mesh_format_is_written(tmp_path, dam_break_small, cli):
     x = sim.positions()
     assert np.all(mesh.vertices.min(axis=0) < x.min(axis=0))
     assert np.all(mesh.vertices.max(axis=0) > x.max(axis=0))
+    # Yu & Turk's anisotropic kernels: the same fluid, a surface of its own.
+    aniso = sim.surface(field="anisotropic")
+    assert aniso.triangle_count > 100 and aniso.vertex_count != mesh.vertex_count
+    np.testing.assert_allclose(aniso.vertices.min(axis=0), mesh.vertices.min(axis=0), atol=0.05)
+    with pytest.raises(ValueError, match="'blobby'.*isotropic, anisotropic"):
+        sim.surface(field="blobby")
     assert weir.mesh_formats() in (["obj", "ply"], ["obj", "ply", "vdb"])
     for name in ["obj", "ply"]:
         mesh.write(str(tmp_path / f"surface.{name}"))

@@ -2,6 +2,8 @@
 #include "surface/mesh_measures.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -90,6 +92,34 @@ MeshMeasures measureMesh(const TriangleMesh& mesh) {
     m.eulerCharacteristic =
         std::int64_t(usedVertices) - std::int64_t(m.edges) + std::int64_t(triangles);
     return m;
+}
+
+double cornerAngleDegrees(const Vec3d& corner, const Vec3d& a, const Vec3d& b) {
+    const Vec3d u = a - corner, v = b - corner;
+    const Vec3d cross{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
+    return std::atan2(length(cross), dot(u, v)) * (180 / 3.14159265358979323846);
+}
+
+MeshQuality measureQuality(const TriangleMesh& mesh, double shortEdge, double smallAngleDegrees) {
+    MeshQuality q;
+    q.minEdge = std::numeric_limits<double>::infinity();
+    q.minAngleDegrees = 180;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const std::uint32_t* v = &mesh.indices[3 * t];
+        const Vec3d p[3] = {Vec3d(mesh.positions[v[0]]), Vec3d(mesh.positions[v[1]]),
+                            Vec3d(mesh.positions[v[2]])};
+        double smallest = 180;
+        for (int k = 0; k < 3; ++k) {
+            const double edge = length(p[(k + 1) % 3] - p[k]);
+            q.minEdge = std::min(q.minEdge, edge);
+            // A closed mesh runs each edge once each way: count it from its lower vertex.
+            q.shortEdges += edge < shortEdge && v[k] < v[(k + 1) % 3] ? 1 : 0;
+            smallest = std::min(smallest, cornerAngleDegrees(p[k], p[(k + 1) % 3], p[(k + 2) % 3]));
+        }
+        q.minAngleDegrees = std::min(q.minAngleDegrees, smallest);
+        q.smallAngles += smallest < smallAngleDegrees ? 1 : 0;
+    }
+    return q;
 }
 
 }  // namespace weir

@@ -29,4 +29,17 @@ struct MeshMeasures {
 // Throws std::out_of_range if an index points past the vertices.
 MeshMeasures measureMesh(const TriangleMesh& mesh);
 
+// Slivers: the shortest edge and the smallest angle, and how many are under given limits.
+struct MeshQuality {
+    double minEdge = 0;           // [m]
+    double minAngleDegrees = 0;   // over every corner of every triangle
+    std::size_t shortEdges = 0;   // undirected edges shorter than the limit
+    std::size_t smallAngles = 0;  // triangles with an angle under the limit
+};
+MeshQuality measureQuality(const TriangleMesh& mesh, double shortEdge, double smallAngleDegrees);
+
+// The angle at `corner` between the directions to a and b, in degrees (atan2 of the cross and dot
+// products: accurate near 0 and 180 degrees).
+double cornerAngleDegrees(const Vec3d& corner, const Vec3d& a, const Vec3d& b);
+
 }  // namespace weir

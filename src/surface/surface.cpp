@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/exec_cpu.h"
+#include "surface/sliver_cleanup.h"
 #include "surface/surface_field.h"
 #include "surface/surface_pipeline.h"
 
@@ -34,6 +35,22 @@ void requireNonNegative(double value, const char* name, const char* zeroMeans) {
 }
 
 }  // namespace
+
+SurfaceField parseSurfaceField(const std::string& name) {
+    for (SurfaceField field : {SurfaceField::Isotropic, SurfaceField::Anisotropic}) {
+        if (name == surfaceFieldName(field)) {
+            return field;
+        }
+    }
+    throw std::invalid_argument("surface field '" + name +
+                                "' is not known; allowed: " + surfaceFieldList());
+}
+
+const char* surfaceFieldName(SurfaceField field) {
+    return field == SurfaceField::Anisotropic ? "anisotropic" : "isotropic";
+}
+
+std::string surfaceFieldList() { return "isotropic, anisotropic"; }
 
 double estimateParticleSpacing(const HostParticles& particles) {
     const std::size_t n = particles.size();
@@ -128,9 +145,18 @@ SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& op
     plan.particleRadius = zhuBridsonParticleRadius(ratio) * plan.spacing;
     plan.cellSize = options.cellSize > 0 ? options.cellSize : 0.5 * plan.spacing;
     plan.iso = options.iso;
+    plan.field = options.field;
+    plan.removeSlivers = options.removeSlivers;
     // Deep in the fluid the field is -r / d, beyond the kernel's reach (R - r) / d.
-    const double isoLow = -plan.particleRadius / plan.spacing;
-    const double isoHigh = (plan.kernelRadius - plan.particleRadius) / plan.spacing;
+    double isoLow = -plan.particleRadius / plan.spacing;
+    double isoHigh = (plan.kernelRadius - plan.particleRadius) / plan.spacing;
+    if (plan.field == SurfaceField::Anisotropic) {
+        // The volume fraction is about 1 deep in the fluid and 0 beyond every kernel.
+        plan.fractionThreshold = kAnisotropicThreshold;
+        plan.fractionSlope = anisotropicFractionSlope(ratio);
+        isoLow = (plan.fractionThreshold - 1) / plan.fractionSlope;
+        isoHigh = plan.fractionThreshold / plan.fractionSlope;
+    }
     if (!(plan.iso > isoLow && plan.iso < isoHigh)) {
         throw std::invalid_argument("iso-value is " + text(plan.iso) + ", must be in (" +
                                     text(isoLow) + ", " + text(isoHigh) +
@@ -169,13 +195,21 @@ TriangleMesh reconstructSurface(Backend backend, const HostParticles& particles,
                                 const SurfacePlan& plan) {
     if (backend == Backend::Cuda) {
 #if defined(WEIR_HAS_CUDA)
-        return reconstructSurfaceCuda(particles, plan);
+        TriangleMesh mesh = reconstructSurfaceCuda(particles, plan);
+        if (plan.removeSlivers) {
+            removeSlivers(mesh, plan.cellSize);
+        }
+        return mesh;
 #else
         throw SurfaceError("this weir was built without CUDA; use the cpu backend");
 #endif
     }
     CpuExec exec;
-    return extractSurface(exec, particles, plan);
+    TriangleMesh mesh = extractSurface(exec, particles, plan);
+    if (plan.removeSlivers) {
+        removeSlivers(mesh, plan.cellSize);
+    }
+    return mesh;
 }
 
 TriangleMesh reconstructSurface(Backend backend, const HostParticles& particles,

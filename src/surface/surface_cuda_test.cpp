@@ -1,6 +1,7 @@
-// On a GPU, the CUDA surface path gives the CPU path's mesh: the same stages over the same
-// lattice, so the same triangles in the same order, vertices within float rounding (a field
-// sample within rounding of the iso-value could flip a cube's case: then the measures still agree).
+// On a GPU, the CUDA surface path gives the CPU path's mesh, with either field: the same stages
+// over the same lattice, so the same triangles in the same order, vertices within float rounding (a
+// field sample within rounding of the iso-value could flip a cube's case: then the measures still
+// agree).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,11 +16,8 @@ namespace {
 
 using namespace weir::testing;
 
-TEST(SurfaceCuda, MatchesTheCpuMesh) {
-    if (!cudaDeviceAvailable()) {
-        GTEST_SKIP() << "no CUDA device visible: the CUDA surface path runs on GPU machines only";
-    }
-    // Two drops and a slab: several pieces, flat and curved parts.
+// Two drops and a slab: several pieces, flat and curved parts.
+HostParticles dropsAndSlab() {
     HostParticles particles = latticeBall(Vec3d(0.1, 0.3, 0.1), 0.08, 0.01);
     const HostParticles second = latticeBall(Vec3d(0.35, 0.25, 0.12), 0.05, 0.01);
     const int counts[3] = {30, 6, 20};
@@ -29,8 +27,17 @@ TEST(SurfaceCuda, MatchesTheCpuMesh) {
             particles.push(Vec3d(more->x[i], more->y[i], more->z[i]), Vec3d());
         }
     }
+    return particles;
+}
+
+void expectCudaMatchesCpu(SurfaceField field) {
+    if (!cudaDeviceAvailable()) {
+        GTEST_SKIP() << "no CUDA device visible: the CUDA surface path runs on GPU machines only";
+    }
+    const HostParticles particles = dropsAndSlab();
     SurfaceOptions options;
     options.spacing = 0.01;
+    options.field = field;
     SurfacePlan plan;
     const TriangleMesh cpu = reconstructSurface(Backend::Cpu, particles, options, &plan);
     const TriangleMesh gpu = reconstructSurface(Backend::Cuda, particles, plan);
@@ -56,6 +63,12 @@ TEST(SurfaceCuda, MatchesTheCpuMesh) {
     EXPECT_NEAR(b.volume / a.volume, 1.0, 1e-4);
     EXPECT_NEAR(b.area / a.area, 1.0, 1e-4);
 }
+
+TEST(SurfaceCuda, MatchesTheCpuMesh) { expectCudaMatchesCpu(SurfaceField::Isotropic); }
+
+// The anisotropy pass (covariance, Jacobi rotations, smoothed centres) and the anisotropic field
+// run the same code on the GPU: the same mesh.
+TEST(SurfaceCuda, AnisotropicMatchesTheCpuMesh) { expectCudaMatchesCpu(SurfaceField::Anisotropic); }
 
 }  // namespace
 }  // namespace weir

@@ -9,6 +9,7 @@
 
 #include "grid/cell_id.h"
 #include "grid/dense_grid.h"
+#include "surface/anisotropy.h"
 #include "surface/marching_cubes.h"
 #include "surface/surface.h"
 #include "surface/surface_field.h"
@@ -96,6 +97,18 @@ TriangleMesh marchingCubes(Exec& exec, const SampledFieldView& lattice) {
     return mesh;
 }
 
+// The field at every lattice sample.
+template <class Exec, class Field>
+void sampleField(Exec& exec, const Field& field, const SampledFieldView& lattice, float* out) {
+    const Index samples = Index(lattice.nx) * Index(lattice.ny) * Index(lattice.nz);
+    exec.forEach(samples, [=] WEIR_HD(Index i) {
+        int x, y, z;
+        lattice.sampleCoords(i, x, y, z);
+        const Vec3 at = lattice.origin + Vec3(Real(x), Real(y), Real(z)) * lattice.cellSize;
+        out[i] = field.valueAt(at);
+    });
+}
+
 // Particles to mesh: bins, field, marching cubes.
 template <class Exec>
 TriangleMesh extractSurface(Exec& exec, const HostParticles& particles, const SurfacePlan& plan) {
@@ -120,30 +133,70 @@ TriangleMesh extractSurface(Exec& exec, const HostParticles& particles, const Su
         Real4* sorted = sortedPos.data();
         exec.forEach(n, [=] WEIR_HD(Index k) { sorted[k] = unsorted[permutation[k]]; });
     }
-    ZhuBridsonField field;
-    field.particles = {bins.cells(), sortedPos.data(),
-                       int(std::ceil(plan.kernelRadius / plan.binSize - 1e-9))};
-    field.kernelRadius2 = Real(plan.kernelRadius * plan.kernelRadius);
-    field.inverseKernelRadius2 = Real(1 / (plan.kernelRadius * plan.kernelRadius));
-    field.particleRadius = Real(plan.particleRadius);
-    field.inverseSpacing = Real(1 / plan.spacing);
-    field.farValue = Real((plan.kernelRadius - plan.particleRadius) / plan.spacing);
+    const ParticleBinsView binned{bins.cells(), sortedPos.data(),
+                                  int(std::ceil(plan.kernelRadius / plan.binSize - 1e-9))};
 
-    // The field at every lattice sample.
     const Index samples = Index(plan.sampleCount());
     ExecBuffer<Exec, float> values(static_cast<std::size_t>(samples));
     SampledFieldView lattice{values.data(), float(plan.iso),   plan.dims[0],       plan.dims[1],
                              plan.dims[2],  Vec3(plan.origin), Real(plan.cellSize)};
-    {
-        float* out = values.data();
-        exec.forEach(samples, [=] WEIR_HD(Index i) {
-            int x, y, z;
-            lattice.sampleCoords(i, x, y, z);
-            const Vec3 at = lattice.origin + Vec3(Real(x), Real(y), Real(z)) * lattice.cellSize;
-            out[i] = field.valueAt(at);
-        });
+    if (plan.field == SurfaceField::Isotropic) {
+        ZhuBridsonField field;
+        field.particles = binned;
+        field.kernelRadius2 = Real(plan.kernelRadius * plan.kernelRadius);
+        field.inverseKernelRadius2 = Real(1 / (plan.kernelRadius * plan.kernelRadius));
+        field.particleRadius = Real(plan.particleRadius);
+        field.inverseSpacing = Real(1 / plan.spacing);
+        field.farValue = Real((plan.kernelRadius - plan.particleRadius) / plan.spacing);
+        sampleField(exec, field, lattice, values.data());
+        return marchingCubes(exec, lattice);
     }
 
+    // Anisotropic kernels: each particle's smoothed centre and matrix, then the centres binned
+    // again (they moved by up to lambda R) with their matrices in the new order.
+    const double neighbourhood = kAnisotropyNeighbourhood * plan.kernelRadius;
+    AnisotropyParams params;
+    params.radius2 = Real(neighbourhood * neighbourhood);
+    params.inverseRadius = Real(1 / neighbourhood);
+    params.inverseKernelRadius = Real(1 / plan.kernelRadius);
+    params.smoothing = Real(kAnisotropySmoothing);
+    params.maxStretch = Real(kAnisotropyMaxStretch);
+    params.minNeighbours = kAnisotropyMinNeighbours;
+    params.isotropicDeterminant = Real(1 / std::pow(plan.kernelRadius, 3));
+    ExecBuffer<Exec, Real4> centres(static_cast<std::size_t>(n)),
+        sortedCentres(static_cast<std::size_t>(n));
+    ExecBuffer<Exec, SymmetricMatrix3> matrices(static_cast<std::size_t>(n)),
+        sortedMatrices(static_cast<std::size_t>(n));
+    {
+        Real4* centreOut = centres.data();
+        SymmetricMatrix3* matrixOut = matrices.data();
+        ParticleBinsView wide = binned;
+        wide.reach = int(std::ceil(neighbourhood / plan.binSize - 1e-9));
+        exec.forEach(n, [=] WEIR_HD(Index i) {
+            anisotropicKernelOf(i, wide, params, centreOut[i], matrixOut[i]);
+        });
+    }
+    DenseGrid<Exec> centreBins(binSpec, 1);
+    centreBins.build(exec, centres.data(), n);
+    {
+        const Index* permutation = centreBins.permutation();
+        const Real4* centreIn = centres.data();
+        const SymmetricMatrix3* matrixIn = matrices.data();
+        Real4* centreOut = sortedCentres.data();
+        SymmetricMatrix3* matrixOut = sortedMatrices.data();
+        exec.forEach(n, [=] WEIR_HD(Index k) {
+            centreOut[k] = centreIn[permutation[k]];
+            matrixOut[k] = matrixIn[permutation[k]];
+        });
+    }
+    AnisotropicField field;
+    field.centres = {centreBins.cells(), sortedCentres.data(), binned.reach};
+    field.matrix = sortedMatrices.data();
+    field.kernelRadius2 = Real(plan.kernelRadius * plan.kernelRadius);
+    field.weightScale = Real(std::pow(plan.spacing, 3) * 315 / (64 * 3.14159265358979323846));
+    field.threshold = Real(plan.fractionThreshold);
+    field.inverseSlope = Real(1 / plan.fractionSlope);
+    sampleField(exec, field, lattice, values.data());
     return marchingCubes(exec, lattice);
 }
 

@@ -275,9 +275,9 @@ class Simulation:
         The arrays where they live, without a copy (ParticleArrays: DLPack views, on the GPU for a CUDA run), in cell order; waits for queued GPU work first.
         """
 
-    def surface(self, backend: str | None = None, spacing: float | None = None, cell_size: float = 0.0, iso: float = 0.0) -> Mesh:
+    def surface(self, backend: str | None = None, spacing: float | None = None, cell_size: float = 0.0, iso: float = 0.0, field: str = 'isotropic') -> Mesh:
         """
-        The fluid's surface now, by marching cubes (as weir mesh): spacing None takes the run's particle spacing, cell_size 0 half of it, iso in particle spacings (> 0 inflates); backend None: the simulation's.
+        The fluid's surface now, by marching cubes (as weir mesh): spacing None takes the run's particle spacing, cell_size 0 half of it, iso in particle spacings (> 0 inflates), field 'isotropic' or 'anisotropic' (weir mesh --surface-field); backend None: the simulation's.
         """
 
     def write_frame(self, path: str | os.PathLike, format: str | None = None) -> None:

@@ -1,0 +1,444 @@
+// removeSlivers: bad triangles found in parallel, then fixed one at a time by local collapses and
+// flips over a vertex-to-triangle table.
+#include "surface/sliver_cleanup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <unordered_map>
+#include <vector>
+
+#include "core/vec3.h"
+#include "surface/mesh_measures.h"
+
+namespace weir {
+
+namespace {
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+Vec3d crossProduct(const Vec3d& a, const Vec3d& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+struct TriangleShape {
+    double edge[3];   // edge k runs from corner k to corner k + 1
+    double angle[3];  // at corner k, in degrees
+    double minEdge() const { return std::min({edge[0], edge[1], edge[2]}); }
+    double minAngle() const { return std::min({angle[0], angle[1], angle[2]}); }
+    double maxAngle() const { return std::max({angle[0], angle[1], angle[2]}); }
+};
+
+TriangleShape shapeOf(const Vec3d p[3]) {
+    TriangleShape s;
+    for (int k = 0; k < 3; ++k) {
+        s.edge[k] = length(p[(k + 1) % 3] - p[k]);
+    }
+    for (int k = 0; k < 3; ++k) {
+        s.angle[k] = cornerAngleDegrees(p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
+    }
+    return s;
+}
+
+class SliverCleaner {
+   public:
+    SliverCleaner(TriangleMesh& mesh, double cellSize)
+        : mesh_(mesh),
+          minEdge_(kSliverEdgeFraction * cellSize),
+          triangles_(mesh.triangleCount()),
+          alive_(triangles_, 1) {
+        // Vertex to triangles, as offsets into one array; changed vertices move to a map.
+        offsets_.assign(mesh.vertexCount() + 1, 0);
+        for (std::uint32_t v : mesh.indices) {
+            ++offsets_[v + 1];
+        }
+        for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+            offsets_[v + 1] += offsets_[v];
+        }
+        incident_.resize(mesh.indices.size());
+        std::vector<std::size_t> fill(offsets_.begin(), offsets_.end() - 1);
+        for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
+            incident_[fill[mesh.indices[i]]++] = std::uint32_t(i / 3);
+        }
+    }
+
+    bool isBad(std::uint32_t t) const {
+        if (!alive_[t]) {
+            return false;
+        }
+        const TriangleShape s = shape(t);
+        return s.minEdge() < minEdge_ || s.minAngle() < kSliverAngleDegrees;
+    }
+
+    void fix(const std::vector<std::uint32_t>& bad, SliverCleanupReport& report) {
+        std::deque<std::uint32_t> queue(bad.begin(), bad.end());
+        std::size_t budget = 8 * bad.size() + 64;  // every operation removes or reshapes a sliver
+        while (!queue.empty() && budget > 0) {
+            const std::uint32_t t = queue.front();
+            queue.pop_front();
+            if (!isBad(t)) {
+                continue;
+            }
+            --budget;
+            std::vector<std::uint32_t> touched;
+            if (fixTriangle(t, report, touched)) {
+                for (std::uint32_t u : touched) {
+                    if (isBad(u)) {
+                        queue.push_back(u);
+                    }
+                }
+            }
+        }
+        // What no operation could fix is a speck: a closed piece of a few triangles around one
+        // lattice sample barely past the iso-value (a tetrahedron a hundredth of a cell across,
+        // where every collapse would break the link condition). It goes, whole.
+        for (std::size_t t = 0; t < triangles_; ++t) {
+            if (isBad(std::uint32_t(t)) && removeSpeck(std::uint32_t(t))) {
+                ++report.specks;
+            }
+        }
+        for (std::size_t t = 0; t < triangles_; ++t) {
+            report.left += isBad(std::uint32_t(t)) ? 1 : 0;
+        }
+    }
+
+    // Drops the dead triangles and the vertices no triangle uses.
+    void compact() {
+        std::vector<std::uint32_t> remap(mesh_.vertexCount(), kNone);
+        std::vector<std::uint32_t> indices;
+        indices.reserve(mesh_.indices.size());
+        std::size_t used = 0;
+        for (std::size_t t = 0; t < triangles_; ++t) {
+            if (!alive_[t]) {
+                continue;
+            }
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t v = mesh_.indices[3 * t + k];
+                if (remap[v] == kNone) {
+                    remap[v] = std::uint32_t(used++);
+                }
+                indices.push_back(remap[v]);
+            }
+        }
+        std::vector<Vec3f> positions(used), normals(used);
+        for (std::size_t v = 0; v < remap.size(); ++v) {
+            if (remap[v] != kNone) {
+                positions[remap[v]] = mesh_.positions[v];
+                normals[remap[v]] = mesh_.normals[v];
+            }
+        }
+        mesh_.positions = std::move(positions);
+        mesh_.normals = std::move(normals);
+        mesh_.indices = std::move(indices);
+    }
+
+   private:
+    TriangleMesh& mesh_;
+    double minEdge_;
+    std::size_t triangles_;
+    std::vector<char> alive_;
+    std::vector<std::size_t> offsets_;
+    std::vector<std::uint32_t> incident_;
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> changed_;
+
+    std::uint32_t* corners(std::uint32_t t) { return &mesh_.indices[3 * std::size_t(t)]; }
+    const std::uint32_t* corners(std::uint32_t t) const {
+        return &mesh_.indices[3 * std::size_t(t)];
+    }
+    Vec3d position(std::uint32_t v) const { return Vec3d(mesh_.positions[v]); }
+
+    TriangleShape shape(std::uint32_t t) const {
+        const std::uint32_t* c = corners(t);
+        const Vec3d p[3] = {position(c[0]), position(c[1]), position(c[2])};
+        return shapeOf(p);
+    }
+
+    std::vector<std::uint32_t> trianglesOf(std::uint32_t v) const {
+        const auto it = changed_.find(v);
+        if (it != changed_.end()) {
+            return it->second;
+        }
+        return std::vector<std::uint32_t>(incident_.begin() + std::ptrdiff_t(offsets_[v]),
+                                          incident_.begin() + std::ptrdiff_t(offsets_[v + 1]));
+    }
+    void setTrianglesOf(std::uint32_t v, std::vector<std::uint32_t> list) {
+        changed_[v] = std::move(list);
+    }
+
+    std::vector<std::uint32_t> neighboursOf(std::uint32_t v) const {
+        std::vector<std::uint32_t> out;
+        for (std::uint32_t t : trianglesOf(v)) {
+            for (int k = 0; k < 3; ++k) {
+                if (corners(t)[k] != v) {
+                    out.push_back(corners(t)[k]);
+                }
+            }
+        }
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+        return out;
+    }
+
+    // The triangles holding both a and b.
+    std::vector<std::uint32_t> edgeTriangles(std::uint32_t a, std::uint32_t b) const {
+        std::vector<std::uint32_t> out;
+        for (std::uint32_t t : trianglesOf(a)) {
+            const std::uint32_t* c = corners(t);
+            if (c[0] == b || c[1] == b || c[2] == b) {
+                out.push_back(t);
+            }
+        }
+        return out;
+    }
+
+    Vec3d normalWith(std::uint32_t t, std::uint32_t moved, const Vec3d& to) const {
+        const std::uint32_t* c = corners(t);
+        Vec3d p[3];
+        for (int k = 0; k < 3; ++k) {
+            p[k] = c[k] == moved ? to : position(c[k]);
+        }
+        return crossProduct(p[1] - p[0], p[2] - p[0]);
+    }
+
+    bool fixTriangle(std::uint32_t t, SliverCleanupReport& report,
+                     std::vector<std::uint32_t>& touched) {
+        const TriangleShape s = shape(t);
+        const std::uint32_t* c = corners(t);
+        int order[3] = {0, 1, 2};  // edges, shortest first
+        std::sort(order, order + 3, [&](int x, int y) { return s.edge[x] < s.edge[y]; });
+        // A cap (an angle near 180 degrees, no edge too short) is fixed by a flip of its longest
+        // edge; a needle, or a cap that cannot be flipped, by collapsing its shortest edge, else
+        // the next; failing those (the link condition), by a flip of any edge that improves it.
+        if (s.minEdge() >= minEdge_ && s.maxAngle() > 150 && flip(t, order[2], report, touched)) {
+            return true;
+        }
+        for (int k : order) {
+            if (collapse(c[k], c[(k + 1) % 3], report, touched)) {
+                return true;
+            }
+        }
+        for (int k : {order[2], order[1], order[0]}) {
+            if (flip(t, k, report, touched)) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    // Removes the piece of the mesh that holds triangle t if it has at most kSpeckTriangles
+    // triangles and fits in a box whose diagonal is under kSpeckExtent cells.
+    bool removeSpeck(std::uint32_t t) {
+        constexpr std::size_t kSpeckTriangles = 16;
+        constexpr double kSpeckExtent = 0.1;
+        std::vector<std::uint32_t> piece{t};
+        Vec3d low = position(corners(t)[0]), high = low;
+        for (std::size_t k = 0; k < piece.size(); ++k) {
+            for (int c = 0; c < 3; ++c) {
+                const std::uint32_t v = corners(piece[k])[c];
+                for (int axis = 0; axis < 3; ++axis) {
+                    low[axis] = std::min(low[axis], position(v)[axis]);
+                    high[axis] = std::max(high[axis], position(v)[axis]);
+                }
+                for (std::uint32_t u : trianglesOf(v)) {
+                    if (std::find(piece.begin(), piece.end(), u) == piece.end()) {
+                        piece.push_back(u);
+                    }
+                }
+            }
+            if (piece.size() > kSpeckTriangles) {
+                return false;
+            }
+        }
+        if (!(length(high - low) < kSpeckExtent * minEdge_ / kSliverEdgeFraction)) {
+            return false;
+        }
+        for (std::uint32_t u : piece) {
+            alive_[u] = 0;
+            for (int c = 0; c < 3; ++c) {
+                setTrianglesOf(corners(u)[c], {});
+            }
+        }
+        return true;
+    }
+
+    // Collapses edge (a, b) into b, moved to the edge's midpoint.
+    bool collapse(std::uint32_t a, std::uint32_t b, SliverCleanupReport& report,
+                  std::vector<std::uint32_t>& touched) {
+        const std::vector<std::uint32_t> shared = edgeTriangles(a, b);
+        if (shared.size() != 2) {
+            return false;
+        }
+        std::uint32_t opposite[2];
+        for (int k = 0; k < 2; ++k) {
+            const std::uint32_t* c = corners(shared[std::size_t(k)]);
+            opposite[k] = c[0] != a && c[0] != b ? c[0] : (c[1] != a && c[1] != b ? c[1] : c[2]);
+        }
+        const std::vector<std::uint32_t> na = neighboursOf(a), nb = neighboursOf(b);
+        std::vector<std::uint32_t> common;
+        std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(),
+                              std::back_inserter(common));
+        std::uint32_t expected[2] = {std::min(opposite[0], opposite[1]),
+                                     std::max(opposite[0], opposite[1])};
+        if (common.size() != 2 || common[0] != expected[0] || common[1] != expected[1]) {
+            return false;  // link condition: the collapse would pinch the surface
+        }
+        if (na.size() + nb.size() - 4 < 3) {  // b's neighbours after: (na + nb) - {a, b} - common
+            return false;
+        }
+        for (std::uint32_t o : opposite) {
+            if (neighboursOf(o).size() < 4) {  // it loses a neighbour and must keep three
+                return false;
+            }
+        }
+        const Vec3d to = (position(a) + position(b)) * 0.5;
+        const std::vector<std::uint32_t> ta = trianglesOf(a), tb = trianglesOf(b);
+        for (const std::vector<std::uint32_t>* list : {&ta, &tb}) {
+            for (std::uint32_t t : *list) {
+                if (t == shared[0] || t == shared[1]) {
+                    continue;
+                }
+                const std::uint32_t moved = std::find(ta.begin(), ta.end(), t) != ta.end() ? a : b;
+                const Vec3d before = normalWith(t, moved, position(moved));
+                const Vec3d after = normalWith(t, moved, to);
+                if (dot(before, after) <= 0 && length(before) > 1e-6 * minEdge_ * minEdge_) {
+                    return false;  // it would turn over
+                }
+            }
+        }
+        // Done: the two triangles of the edge die, a's others take b.
+        for (std::uint32_t dead : shared) {
+            alive_[dead] = 0;
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t v = corners(dead)[k];
+                if (v != a && v != b) {
+                    std::vector<std::uint32_t> list = trianglesOf(v);
+                    list.erase(std::remove(list.begin(), list.end(), dead), list.end());
+                    setTrianglesOf(v, std::move(list));
+                }
+            }
+        }
+        std::vector<std::uint32_t> merged;
+        for (const std::vector<std::uint32_t>* list : {&ta, &tb}) {
+            for (std::uint32_t t : *list) {
+                if (alive_[t] && std::find(merged.begin(), merged.end(), t) == merged.end()) {
+                    merged.push_back(t);
+                    std::uint32_t* c = corners(t);
+                    for (int k = 0; k < 3; ++k) {
+                        c[k] = c[k] == a ? b : c[k];
+                    }
+                }
+            }
+        }
+        setTrianglesOf(a, {});
+        setTrianglesOf(b, merged);
+        mesh_.positions[b] = Vec3f(to);
+        const Vec3f n = mesh_.normals[a] + mesh_.normals[b];
+        const float norm = length(n);
+        mesh_.normals[b] = norm > 0 ? n / norm : mesh_.normals[b];
+        touched = merged;
+        ++report.collapses;
+        return true;
+    }
+
+    // Flips the edge that starts at corner k of triangle t.
+    bool flip(std::uint32_t t, int k, SliverCleanupReport& report,
+              std::vector<std::uint32_t>& touched) {
+        const std::uint32_t* c1 = corners(t);
+        const std::uint32_t q = c1[k], r = c1[(k + 1) % 3], p = c1[(k + 2) % 3];
+        const std::vector<std::uint32_t> shared = edgeTriangles(q, r);
+        if (shared.size() != 2) {
+            return false;
+        }
+        const std::uint32_t u = shared[0] == t ? shared[1] : shared[0];
+        const std::uint32_t* c2 = corners(u);
+        int at = 0;  // u runs r -> q -> s
+        while (c2[at] != r) {
+            ++at;
+        }
+        if (c2[(at + 1) % 3] != q) {
+            return false;  // wound the same way: leave it
+        }
+        const std::uint32_t s = c2[(at + 2) % 3];
+        const std::vector<std::uint32_t> np = neighboursOf(p);
+        if (s == p || std::binary_search(np.begin(), np.end(), s)) {
+            return false;  // the new edge exists already
+        }
+        if (neighboursOf(q).size() < 4 || neighboursOf(r).size() < 4) {
+            return false;
+        }
+        const Vec3d pp = position(p), pq = position(q), pr = position(r), ps = position(s);
+        const Vec3d oldNormal =
+            crossProduct(pq - pp, pr - pp) + crossProduct(pq - pr, ps - pr);  // t and u
+        const Vec3d n1 = crossProduct(pq - pp, ps - pp), n2 = crossProduct(ps - pp, pr - pp);
+        if (dot(n1, oldNormal) <= 0 || dot(n2, oldNormal) <= 0) {
+            return false;
+        }
+        const Vec3d before[2][3] = {{pp, pq, pr}, {pr, pq, ps}};
+        const Vec3d after[2][3] = {{pp, pq, ps}, {pp, ps, pr}};
+        const double oldMin =
+            std::min(shapeOf(before[0]).minAngle(), shapeOf(before[1]).minAngle());
+        const double newMin = std::min(shapeOf(after[0]).minAngle(), shapeOf(after[1]).minAngle());
+        if (!(newMin > oldMin)) {
+            return false;
+        }
+        std::uint32_t* w1 = corners(t);
+        std::uint32_t* w2 = corners(u);
+        w1[0] = p, w1[1] = q, w1[2] = s;
+        w2[0] = p, w2[1] = s, w2[2] = r;
+        auto replace = [&](std::uint32_t v, std::uint32_t drop, std::uint32_t add) {
+            std::vector<std::uint32_t> list = trianglesOf(v);
+            if (drop != kNone) {
+                list.erase(std::remove(list.begin(), list.end(), drop), list.end());
+            }
+            if (add != kNone) {
+                list.push_back(add);
+            }
+            setTrianglesOf(v, std::move(list));
+        };
+        replace(r, t, kNone);  // t no longer holds r
+        replace(q, u, kNone);  // u no longer holds q
+        replace(s, kNone, t);
+        replace(p, kNone, u);
+        touched = {t, u};
+        ++report.flips;
+        return true;
+    }
+};
+
+}  // namespace
+
+SliverCleanupReport removeSlivers(TriangleMesh& mesh, double cellSize) {
+    SliverCleanupReport report;
+    const std::size_t triangles = mesh.triangleCount();
+    if (triangles == 0) {
+        return report;
+    }
+    const double minEdge = kSliverEdgeFraction * cellSize;
+    std::vector<char> bad(triangles, 0);
+#pragma omp parallel for schedule(static)
+    for (std::int64_t t = 0; t < std::int64_t(triangles); ++t) {
+        const std::uint32_t* v = &mesh.indices[3 * std::size_t(t)];
+        const Vec3d p[3] = {Vec3d(mesh.positions[v[0]]), Vec3d(mesh.positions[v[1]]),
+                            Vec3d(mesh.positions[v[2]])};
+        const TriangleShape s = shapeOf(p);
+        bad[std::size_t(t)] = s.minEdge() < minEdge || s.minAngle() < kSliverAngleDegrees;
+    }
+    std::vector<std::uint32_t> badList;
+    for (std::size_t t = 0; t < triangles; ++t) {
+        if (bad[t]) {
+            badList.push_back(std::uint32_t(t));
+        }
+    }
+    report.badTriangles = badList.size();
+    if (badList.empty()) {
+        return report;
+    }
+    SliverCleaner cleaner(mesh, cellSize);
+    cleaner.fix(badList, report);
+    cleaner.compact();
+    return report;
+}
+
+}  // namespace weir
