@@ -270,6 +270,7 @@ TEST_F(DocCommands, RenderingRunsAsWritten) { runDocument("docs/rendering.md"); 
 TEST_F(DocCommands, ClusterRunsAsWritten) { runDocument("docs/cluster.md"); }
 TEST_F(DocCommands, ScenesRunAsWritten) { runDocument("docs/scenes.md"); }
 TEST_F(DocCommands, PipelineRunsAsWritten) { runDocument("docs/pipeline.md"); }
+TEST_F(DocCommands, SurfacesRunAsWritten) { runDocument("docs/surfaces.md"); }
 TEST_F(DocCommands, BenchRunsAsWritten) { runDocument("bench/README.md"); }
 
 // The scene file the README shows is the shipped example, and that example loads (its rock mesh
