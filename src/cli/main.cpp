@@ -81,8 +81,8 @@ void addSurfaceField(CLI::App* cmd, std::string& field, const std::string& lead)
     cmd->add_option("--surface-field", field,
                     lead +
                         "isotropic (Zhu & Bridson's blobs, the default) or anisotropic (Yu & "
-                        "Turk's kernels stretched along the fluid: thin sheets stay thin, flat "
-                        "water flat; docs/surfaces.md)")
+                        "Turk's kernels stretched along the fluid: thin sheets stay thin, lone "
+                        "particles round drops; free surfaces 0.3 spacings in; docs/surfaces.md)")
         ->check(CLI::IsMember({"isotropic", "anisotropic"}))
         ->capture_default_str();
 }
