@@ -238,7 +238,7 @@ class Dfsph final : public PressureSolver<Exec> {
         });
         if (share > Real(0)) {
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
-                dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor, nullptr);
+                dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor);
             });
         }
         for (int sweep = 0; sweep <= maximum; ++sweep) {
@@ -250,7 +250,7 @@ class Dfsph final : public PressureSolver<Exec> {
             s.exec.forEach(
                 1, [=] WEIR_HD(Index) { dfsphCheck(monitor, n, tolerance, minimum, maximum); });
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
-                dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor, accumulated);
+                dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor);
             });
             const bool poll = !Exec::isDevice || (sweep >= minimum && sweep % 2 == 0);
             if (poll && s.exec.readOne(monitor_, monitorSlot).done != 0) {

@@ -45,13 +45,13 @@ struct DfsphMonitor {
 };
 
 // A solve's states after sweeping (DfsphMonitor::done). The sweep whose prediction met the
-// tolerance does not apply its update: it takes its stiffness back out of the solve's sum
-// instead, so that the sum kept for the warm start and the frames' pressure is the one applied
-// (measured: left in, the sum read 20% above the pressure that held a tank at rest). Applying
-// that last update instead gave spray at a side wall 26 m/s in a 1M dam break on the H200
-// (pressures of 690 kPa) and blew up the 10M one: at a free surface it is a push that no later
-// sweep checks, where a warm start never carries it. Every stage of a later sweep returns at
-// once.
+// tolerance does not apply its update; its stiffness change stays in the solve's sum, so the next
+// step's warm start applies it (inside the fluid). Measured on the H200, 1M dam break: applying
+// that update at once kicked spray at a side wall to 26 m/s (pressures of 690 kPa); taking it back
+// out of the sum instead (the sum then exactly what was applied) also blew up, at 0.18 s, and the
+// 10M dam break blew up either way: at a free surface the last push is checked by no later sweep,
+// where the warm start never carries it. (The sum kept, and the frames' pressure with it, is then
+// one sweep ahead of the velocities.) Every stage of a later sweep returns at once.
 constexpr int kDfsphLastSweep = 1;
 constexpr int kDfsphDone = 2;
 
@@ -318,19 +318,12 @@ WEIR_HD inline void dfsphBeginSolve(DfsphMonitor* monitor, const StepClock* cloc
 // The velocity update of one iteration for particle i: v_i -= dt (sum_j m_j (kappa_i / rho_i +
 // kappa_j / rho_j) grad W_ij + sum_b psi_b kappa_i / rho_i grad W_ib), from each particle's
 // kappa / rho. Velocities are updated in place: this pass reads only positions and the kappa /
-// rho of others. In the sweep that ends the solve it applies nothing and takes i's last stiffness
-// change back out of `accumulated` (the solve's sum; null: the warm start's own update).
+// rho of others. It applies nothing in the sweep that ends the solve.
 template <class Neighbours>
 WEIR_HD inline void dfsphUpdateAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                   const SphParams& p, Real4* vel, const Real* kappaOverRho,
-                                  const StepClock* clock, const DfsphMonitor* monitor,
-                                  Real* accumulated) {
+                                  const StepClock* clock, const DfsphMonitor* monitor) {
     if (monitor->done != 0) {
-        if (monitor->done == kDfsphLastSweep && accumulated != nullptr) {
-            const Real unapplied = kappaOverRho[i] * vel[i].w;
-            const Real kept = accumulated[i] - unapplied;
-            accumulated[i] = kept > Real(0) ? kept : Real(0);
-        }
         return;
     }
     const Vec3 xi = pv.position(i);
