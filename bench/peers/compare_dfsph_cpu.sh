@@ -18,10 +18,13 @@ weir=${WEIR:-$root/build/weir}
 mkdir -p "$out"
 export OMP_NUM_THREADS=$threads
 
-# SPlisHSPlasH (its wheel's bundled GL libraries clash with Debian's libGLX at import).
-LD_PRELOAD=/lib/x86_64-linux-gnu/libGLdispatch.so.0 \
-    "$python" "$root/bench/peers/splishsplash_dfsph.py" "$radius" "$duration" \
-    "$out/splishsplash.json" >"$out/splishsplash.log" 2>&1
+# SPlisHSPlasH (its wheel's bundled GL libraries clash with Debian's libGLX at import);
+# REUSE_PEER=1 keeps an earlier run's results in the out-dir (to re-measure weir alone).
+if [ -z "${REUSE_PEER:-}" ] || [ ! -f "$out/splishsplash.json" ]; then
+    LD_PRELOAD=/lib/x86_64-linux-gnu/libGLdispatch.so.0 \
+        "$python" "$root/bench/peers/splishsplash_dfsph.py" "$radius" "$duration" \
+        "$out/splishsplash.json" >"$out/splishsplash.log" 2>&1
+fi
 
 # weir, the same layout: the cube's side a whole number of spacings (SPlisHSPlasH seeds
 # floor(1 m / 2r) - 1 a side), shifted into weir's box at the origin.

@@ -92,10 +92,6 @@ struct SphParams {
     Real divergenceTolerance = 0;
     int maxSolverIterations = 0;
     Real minFactorDenominator = 0;  // the least denominator of the factor alpha, kg^2/m^8
-    // The uncorrected kernel gradient's lattice moment: on the seeded lattice it reads a linear
-    // pressure short by this factor, so the stiffness that holds a fluid at rest is steeper by its
-    // inverse (DFSPH's starting pressure and reported pressure, solver/dfsph/dfsph.h).
-    Real gradientMoment = 1;
 };
 
 // Whether axis a (0, 1, 2 for x, y, z) is periodic.

@@ -97,10 +97,8 @@ class ParticleStore {
     }
 
     // Copies the particles to the host in id order (ids 0 .. n - 1), with the pressure that the
-    // equation of state gives their density, or rho (p / rho) from `pressureOverDensity` (in the
-    // store's order) where a method solved for it.
-    void download(Exec& exec, HostParticles& out, const SphParams& params,
-                  const std::vector<Real>* pressureOverDensity = nullptr) {
+    // equation of state gives their density.
+    void download(Exec& exec, HostParticles& out, const SphParams& params) {
         out.resize(std::size_t(n_));
         std::vector<Index> ids(static_cast<std::size_t>(n_));
         std::vector<Real4> pos(static_cast<std::size_t>(n_)), vel(static_cast<std::size_t>(n_));
@@ -116,10 +114,7 @@ class ParticleStore {
             out.vy[k] = vel[i].y;
             out.vz[k] = vel[i].z;
             out.rho[k] = vel[i].w;
-            out.p[k] =
-                pressureOverDensity != nullptr && std::size_t(i) < pressureOverDensity->size()
-                    ? vel[i].w * (*pressureOverDensity)[std::size_t(i)]
-                    : pressureFromDensity(params, vel[i].w);
+            out.p[k] = pressureFromDensity(params, vel[i].w);
         }
     }
 

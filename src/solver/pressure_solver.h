@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cstddef>
-#include <vector>
 
 #include "physics/boundary.h"
 #include "physics/collision.h"
@@ -68,10 +67,6 @@ class PressureSolver {
     virtual std::size_t bytesHeld() const = 0;
     // The iterations since the last call, and a fresh count from here (a host round trip).
     virtual SolverReport takeReport(Exec&) { return {}; }
-    // A method that solves for its pressure (DFSPH) copies each particle's p / rho, in the
-    // store's current order, into `out` and returns true; one whose pressure follows from the
-    // density by the equation of state returns false.
-    virtual bool pressureOverDensity(Exec&, std::vector<Real>&) { return false; }
 };
 
 }  // namespace weir

@@ -88,11 +88,7 @@ class SphSimulation final : public Simulation {
         StepContext<Exec> s = context();
         method_->runStage(s, stage);
     }
-    void download(HostParticles& out) override {
-        std::vector<Real> kappa;
-        const bool solved = method_->pressureOverDensity(exec_, kappa);
-        store_.download(exec_, out, params_, solved ? &kappa : nullptr);
-    }
+    void download(HostParticles& out) override { store_.download(exec_, out, params_); }
     FaultRecord fault() override { return exec_.readOne(fault_, 0); }
     void synchronize() override { exec_.synchronize(); }
 

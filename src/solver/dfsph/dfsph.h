@@ -11,7 +11,6 @@
 #include <cstddef>
 #include <cstdlib>
 #include <string>
-#include <vector>
 
 #include "core/team.h"
 #include "grid/neighbour_list.h"
@@ -105,25 +104,6 @@ class Dfsph final : public PressureSolver<Exec> {
                    sizeof(Real) +
                error_.size() * sizeof(float) + interior_.size() +
                wallState_.size() * sizeof(Real4) + monitor_.size() * sizeof(DfsphMonitor);
-    }
-
-    // The pressure the solves found, p = rho kappa M: the stiffness both solves of the last step
-    // summed to (zero at a free surface and wherever nothing compresses), times the kernel
-    // gradient's lattice moment M, as the stiffness that holds a fluid at rest is steeper than
-    // its pressure by 1 / M (SphParams::gradientMoment).
-    bool pressureOverDensity(Exec& exec, std::vector<Real>& out) override {
-        const std::size_t n = warm_[0].size();
-        if (n == 0) {
-            return false;
-        }
-        std::vector<Real> divergence(n);
-        out.resize(n);
-        exec.download(warm_[0], out.data(), n);
-        exec.download(warm_[1], divergence.data(), n);
-        for (std::size_t i = 0; i < n; ++i) {
-            out[i] = (out[i] + divergence[i]) * moment_;
-        }
-        return true;
     }
 
     SolverReport takeReport(Exec& exec) override {
@@ -220,8 +200,7 @@ class Dfsph final : public PressureSolver<Exec> {
         s.exec.stageBegin(divergence ? "divergence" : "pressure");
         const ParticleView pv = view(s);
         const StepClock* clock = s.clock;
-        const int monitorSlot = divergence ? 1 : 0;
-        DfsphMonitor* monitor = monitor_.data() + monitorSlot;
+        DfsphMonitor* monitor = monitor_.data() + (divergence ? 1 : 0);
         const Real* factor = factor_.data();
         Real* kappaOverRho = kappaOverRho_.data();
         float* error = error_.data();
@@ -234,7 +213,7 @@ class Dfsph final : public PressureSolver<Exec> {
         const Real share = divergence ? kDivergenceWarmShare : kDensityWarmShare;
         s.exec.forEach(1, [=] WEIR_HD(Index) { dfsphBeginSolve(monitor, clock); });
         s.exec.forEach(n, [=] WEIR_HD(Index i) {
-            dfsphWarmStartAt(i, vel, share, clock, kappaOverRho, accumulated, interior);
+            dfsphWarmStartAt(i, vel, divergence, share, clock, kappaOverRho, accumulated, interior);
         });
         if (share > Real(0)) {
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
@@ -253,7 +232,7 @@ class Dfsph final : public PressureSolver<Exec> {
                 dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor);
             });
             const bool poll = !Exec::isDevice || (sweep >= minimum && sweep % 2 == 0);
-            if (poll && s.exec.readOne(monitor_, monitorSlot).done != 0) {
+            if (poll && s.exec.readOne(monitor_, divergence ? 1 : 0).done != 0) {
                 break;
             }
         }
@@ -291,7 +270,6 @@ class Dfsph final : public PressureSolver<Exec> {
     // Sizes the method's arrays to the particle count (no allocation unless it grew).
     void fit(Context& s) {
         const std::size_t n = std::size_t(s.store.count());
-        moment_ = s.params.gradientMoment;
         if (warm_[0].size() != n) {
             for (Buffer<Real>* b : {&warm_[0], &warm_[1], &warmNext_[0], &warmNext_[1]}) {
                 b->resize(n);
@@ -309,9 +287,9 @@ class Dfsph final : public PressureSolver<Exec> {
             listed_ = listFits(s.exec, n);
             listDecided_ = true;
         }
-        if (monitor_.size() < kMonitors) {
-            const DfsphMonitor zero[kMonitors] = {};
-            s.exec.upload(monitor_, zero, kMonitors);
+        if (monitor_.size() < 2) {
+            const DfsphMonitor zero[2] = {};
+            s.exec.upload(monitor_, zero, 2);
         }
     }
 
@@ -332,9 +310,6 @@ class Dfsph final : public PressureSolver<Exec> {
         return {s.store.pos(), s.store.vel(), nullptr, nullptr, s.store.count(), walls};
     }
 
-    // The monitors: [0] the density solve, [1] the divergence solve.
-    static constexpr int kMonitors = 2;
-
     // The share of the last step's summed stiffness a solve starts from.
     static constexpr Real kDensityWarmShare = Real(1);
     static constexpr Real kDivergenceWarmShare = Real(1);
@@ -348,11 +323,10 @@ class Dfsph final : public PressureSolver<Exec> {
                                       // (kappa_i = p_i / rho_i)
     Buffer<float> error_;             // the current sweep's per-particle error, for the sum
     Buffer<Real4> wallState_;         // no-slip walls: each boundary particle's mirrored velocity
-    Buffer<DfsphMonitor> monitor_;    // kMonitors of them
+    Buffer<DfsphMonitor> monitor_;    // [0] the density solve, [1] the divergence solve
     NeighbourList<Exec> list_;        // this step's neighbours, when listed_
     bool listed_ = false;             // whether the neighbours are listed (memory allowing)
     bool listDecided_ = false;
-    Real moment_ = 1;  // SphParams::gradientMoment
 };
 
 }  // namespace weir

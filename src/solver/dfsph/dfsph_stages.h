@@ -34,7 +34,7 @@ namespace weir {
 // that the iterations test convergence with no host round trip; and what a frame's log reports.
 struct DfsphMonitor {
     float errorSum;  // this iteration's sum of per-particle errors (the backend's reduction)
-    int done;  // 0: sweeping; kDfsphLastSweep: this sweep's update is the solve's last; kDfsphDone
+    int done;        // this solve has converged or run out of iterations
     int iterations;  // velocity updates of this solve so far
     // Since the last read by the host (one frame's worth):
     long long totalIterations;  // velocity updates over all solves
@@ -43,17 +43,6 @@ struct DfsphMonitor {
     int unconverged;            // solves that stopped at the iteration limit
     float worstError;           // the largest mean error a solve ended with
 };
-
-// A solve's states after sweeping (DfsphMonitor::done). The sweep whose prediction met the
-// tolerance does not apply its update; its stiffness change stays in the solve's sum, so the next
-// step's warm start applies it (inside the fluid). Measured on the H200, 1M dam break: applying
-// that update at once kicked spray at a side wall to 26 m/s (pressures of 690 kPa); taking it back
-// out of the sum instead (the sum then exactly what was applied) also blew up, at 0.18 s, and the
-// 10M dam break blew up either way: at a free surface the last push is checked by no later sweep,
-// where the warm start never carries it. (The sum kept, and the frames' pressure with it, is then
-// one sweep ahead of the velocities.) Every stage of a later sweep returns at once.
-constexpr int kDfsphLastSweep = 1;
-constexpr int kDfsphDone = 2;
 
 // Fewer neighbours than this (the full lattice has about 33 at h = 2 d): a particle at a free
 // surface or in spray, whose density rate the divergence-free solver leaves alone (Bender &
@@ -234,10 +223,10 @@ constexpr Real kDfsphReleaseRelaxation = Real(0.5);
 // sweeps overshoot both ways and grow (measured: a tank at rest blew up in its first step). The
 // error for the mean is |excess| / rho0 where i holds a stiffness, the compression alone where it
 // holds none (a free surface, light by summation, is no error). accumulated keeps the sum for the
-// next step's warm start as kappa itself, for both solves: a steady pressure field p = rho kappa
-// holds whatever the step. (Kept as an impulse, dt kappa, the divergence solve's share of a tank's
-// hydrostatic load, a third of it, was applied over less time in a step cut short to land on a
-// frame: the pressure read 1.15-1.30 of rho0 g depth.) Nothing once the solve is done.
+// next step's warm start, in a form that does not depend on dt: kappa itself for the density solve
+// (a steady pressure field p = rho kappa holds whatever the step), kappa dt for the divergence
+// solve (the velocity it removes, dt kappa / h, does not depend on dt). Nothing once the solve is
+// done.
 template <class Neighbours>
 WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                    const SphParams& p, const Real4* vel, const Real* factor,
@@ -253,10 +242,12 @@ WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighb
     Real k = excess * factor[i] / (dt * dt);
     k = excess < Real(0) ? k * kDfsphReleaseRelaxation : k;
     const Real before = accumulated[i];
-    if (before + k < Real(0)) {
-        k = -before;
+    Real stored = divergence ? k * dt : k;
+    if (before + stored < Real(0)) {
+        stored = -before;
+        k = divergence ? stored / dt : stored;
     }
-    const Real after = before + k;
+    const Real after = before + stored;
     accumulated[i] = after;
     kappaOverRho[i] = k * reciprocal(vel[i].w);
     const Real counted = after > Real(0) ? fabs(excess) : (excess > Real(0) ? excess : Real(0));
@@ -271,8 +262,8 @@ WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighb
 // would push on for as long as it is carried. (Half of it, only where compressed, as SPlisHSPlasH
 // starts, took 23-32 sweeps a step on a 1M dam break on the H200 against 2: each step rebuilt half
 // the column's pressure.)
-WEIR_HD inline void dfsphWarmStartAt(Index i, const Real4* vel, Real share, const StepClock* clock,
-                                     Real* kappaOverRho, Real* accumulated,
+WEIR_HD inline void dfsphWarmStartAt(Index i, const Real4* vel, bool divergence, Real share,
+                                     const StepClock* clock, Real* kappaOverRho, Real* accumulated,
                                      const unsigned char* interior) {
     const Real dt = clock->dt;
     if (dt == Real(0)) {
@@ -280,23 +271,21 @@ WEIR_HD inline void dfsphWarmStartAt(Index i, const Real4* vel, Real share, cons
     }
     const Real warm = accumulated[i];
     const Real start = warm > Real(0) && interior[i] != 0 ? share * warm : Real(0);
-    kappaOverRho[i] = start * reciprocal(vel[i].w);
+    kappaOverRho[i] = (divergence ? start / dt : start) * reciprocal(vel[i].w);
     accumulated[i] = start;
 }
 
 // One thread, after the errors' sum: the iteration's mean error against the tolerance. The solve
-// is done once it is under it after at least minIterations updates, or at maxIterations; that
-// sweep's update is then not applied (kDfsphLastSweep).
+// is done once it is under it after at least minIterations updates, or at maxIterations.
 WEIR_HD inline void dfsphCheck(DfsphMonitor* monitor, Index count, Real tolerance,
                                int minIterations, int maxIterations) {
     if (monitor->done != 0) {
-        monitor->done = kDfsphDone;
         return;
     }
     const float mean = count > 0 ? monitor->errorSum / float(count) : 0.0f;
     const bool converged = mean <= float(tolerance) && monitor->iterations >= minIterations;
     if (converged || monitor->iterations >= maxIterations) {
-        monitor->done = kDfsphLastSweep;
+        monitor->done = 1;
         monitor->totalIterations += monitor->iterations;
         monitor->solves += 1;
         monitor->maxIterations = monitor->iterations > monitor->maxIterations
@@ -311,14 +300,16 @@ WEIR_HD inline void dfsphCheck(DfsphMonitor* monitor, Index count, Real toleranc
 
 // One thread, before a solve: its state reset (done at once in a no-op step).
 WEIR_HD inline void dfsphBeginSolve(DfsphMonitor* monitor, const StepClock* clock) {
-    monitor->done = clock->dt == Real(0) ? kDfsphDone : 0;
+    monitor->done = clock->dt == Real(0) ? 1 : 0;
     monitor->iterations = 0;
 }
 
 // The velocity update of one iteration for particle i: v_i -= dt (sum_j m_j (kappa_i / rho_i +
 // kappa_j / rho_j) grad W_ij + sum_b psi_b kappa_i / rho_i grad W_ib), from each particle's
 // kappa / rho. Velocities are updated in place: this pass reads only positions and the kappa /
-// rho of others. It applies nothing in the sweep that ends the solve.
+// rho of others. accumulated (if
+// not null) sums each particle's stiffness over the solve's iterations (the next step's warm
+// start).
 template <class Neighbours>
 WEIR_HD inline void dfsphUpdateAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                   const SphParams& p, Real4* vel, const Real* kappaOverRho,

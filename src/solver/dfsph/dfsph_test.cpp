@@ -58,8 +58,7 @@ TEST(Dfsph, TankAtRestHoldsRestDensityAndStaysAtRest) {
         }
         return std::sqrt(squares / double(p.size()));
     };
-    double rmsEarly = 0, weightRatio = 0, surfacePressure = 0;
-    int framesWeighed = 0;
+    double rmsEarly = 0;
     for (int frame = 1; frame <= 5; ++frame) {
         sim->advanceTo(0.1 * frame);
         ASSERT_EQ(sim->fault().code, 0) << describeFault(sim->fault(), sim->params());
@@ -78,22 +77,6 @@ TEST(Dfsph, TankAtRestHoldsRestDensityAndStaysAtRest) {
         if (frame == 2) {
             rmsEarly = rmsSpeed(p);
         }
-        if (frame >= 3) {
-            double pressureSum = 0, hydrostaticSum = 0, surfaceSum = 0;
-            int surface = 0;
-            for (std::size_t i = 0; i < p.size(); ++i) {
-                pressureSum += double(p.p[i]);
-                hydrostaticSum += 1000.0 * 9.81 * (0.2 - double(p.y[i]));
-                if (p.y[i] > 0.19) {
-                    surfaceSum += double(p.p[i]);
-                    ++surface;
-                }
-            }
-            ASSERT_GT(surface, 0);
-            weightRatio += pressureSum / hydrostaticSum;
-            surfacePressure = std::max(surfacePressure, surfaceSum / surface);
-            ++framesWeighed;
-        }
         const Compression c = compressionOf(p, scene.restDensity);
         // The check: a tank at rest holds rho0 within 0.1%.
         EXPECT_LT(c.mean, 1e-3) << "frame " << frame;
@@ -110,15 +93,6 @@ TEST(Dfsph, TankAtRestHoldsRestDensityAndStaysAtRest) {
               << " m/s\n";
     EXPECT_LT(rms, 0.03 * report.expectedSpeed);
     EXPECT_LT(rms, rmsEarly);
-    // The frames' pressure is the solver's, p = rho kappa M: over the tank it holds the water's
-    // weight, rho0 g depth below the free surface (0.2 m) on average over the last three frames
-    // within 20% (the column still rings: measured 1.07, 1.13, 0.98 of it, 1.06 on average),
-    // and next to none at the surface.
-    ASSERT_GT(framesWeighed, 0);
-    std::cout << "dfsph tank at rest: pressure " << weightRatio / framesWeighed
-              << " of hydrostatic over the last frames, surface " << surfacePressure << " Pa\n";
-    EXPECT_NEAR(weightRatio / framesWeighed, 1.0, 0.2);
-    EXPECT_LT(surfacePressure, 0.1 * 1000.0 * 9.81 * 0.2);
     // No particle sits on a container plane held there by the collision response.
     int onPlanes = 0;
     for (std::size_t i = 0; i < p.size(); ++i) {
