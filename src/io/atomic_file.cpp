@@ -55,43 +55,27 @@ void writeFileAtomicallyByName(const std::string& path,
 
 void writeFileAtomically(const std::string& path,
                          const std::function<void(std::ostream&)>& writeBody) {
-    const std::string tmpPath = temporaryPath(path);
-    const auto removeTmp = [&] {
-        std::error_code ignored;
-        std::filesystem::remove(tmpPath, ignored);
-    };
-    const auto fail = [&](const std::string& what, const std::string& reason) {
-        removeTmp();
-        throw IoError("cannot write '" + path + "': " + what + ": " + reason);
-    };
-
-    errno = 0;
-    std::ofstream out(tmpPath, std::ios::binary | std::ios::trunc);
-    if (!out) {
-        fail("cannot create temporary '" + tmpPath + "'", osReason("open failed"));
-    }
-    try {
+    writeFileAtomicallyByName(path, [&](const std::string& tmpPath) {
+        const auto fail = [&](const std::string& what, const std::string& reason) {
+            throw IoError("cannot write '" + path + "': " + what + ": " + reason);
+        };
+        errno = 0;
+        std::ofstream out(tmpPath, std::ios::binary | std::ios::trunc);
+        if (!out) {
+            fail("cannot create temporary '" + tmpPath + "'", osReason("open failed"));
+        }
         errno = 0;
         writeBody(out);
-    } catch (...) {
+        out.flush();  // a failed write inside writeBody left its errno; keep it for the message
+        if (!out) {
+            fail("write failed", osReason("stream error"));
+        }
+        errno = 0;
         out.close();
-        removeTmp();
-        throw;
-    }
-    out.flush();  // a failed write inside writeBody left its errno; keep it for the message
-    if (!out) {
-        fail("write failed", osReason("stream error"));
-    }
-    errno = 0;
-    out.close();
-    if (!out) {
-        fail("close failed", osReason("stream error"));
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmpPath, path, ec);
-    if (ec) {
-        fail("cannot rename temporary '" + tmpPath + "' over it", ec.message());
-    }
+        if (!out) {
+            fail("close failed", osReason("stream error"));
+        }
+    });
 }
 
 std::vector<std::string> removeStaleTemporaries(const std::string& dir) {
