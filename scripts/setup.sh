@@ -43,6 +43,16 @@ if [ ${#missing[@]} -gt 0 ]; then
         echo "weir setup: could not install ${missing[*]}; building without OpenVDB"
     fi
 fi
+# Optional, for the tests only: Debian's Blender, which src/python/blender_test.py runs headless
+# to load a weir run and render it in Cycles (docs/pipeline.md); the test skips without it. About
+# 30 s and 420 MB (77 packages, none of them Python). WEIR_BLENDER=0 leaves it out.
+if [ "${WEIR_BLENDER:-1}" != 0 ] && [ -n "$(missingFrom blender)" ]; then
+    echo "weir setup: installing blender (optional: the Blender test)"
+    if ! { $sudo apt-get update -qq &&
+           DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq blender >/dev/null; }; then
+        echo "weir setup: could not install blender; the Blender test will skip"
+    fi
+fi
 
 # CUDA is optional: use nvcc if it is on PATH or in the usual place.
 if ! command -v nvcc >/dev/null 2>&1 && [ -x /usr/local/cuda/bin/nvcc ]; then

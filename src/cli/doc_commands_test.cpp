@@ -1,12 +1,13 @@
 // Every command in README.md and docs/ runs as written (issue 20). The shell commands of each
 // ```sh block are extracted and run in order, one folder per document, from a copy of the
-// repository root's layout (build/weir, examples/, scenes/; `weir` on PATH). What the test
-// changes, so that the suite stays fast on two cores: it shrinks sizes, as each command's own
+// repository root's layout (build/weir, examples/, scenes/, tools/; `weir` on PATH). What the
+// test changes, so that the suite stays fast on two cores: it shrinks sizes, as each command's own
 // options allow (`weir run`: 1000 particles, images of 160 x 90; `weir view`: 1000 particles, 3
-// frames; `weir bench`: 1k particles, 2 steps; `weir render`: 160 x 90 pixels, 1 sample). Frame
-// counts stay as written, as later commands pick frames by number. A command marked with a comment
-// "needs ffmpeg", "needs a GPU" (or "2 GPUs"), "needs mpirun", "needs a display" (Xvfb's) or "needs
-// a cluster" is skipped where that is missing; the set-up scripts (`bash scripts/...`) install
+// frames; `weir bench`: 1k particles, 2 steps; `weir render`: 160 x 90 pixels, 1 sample; Blender
+// with tools/blender/weir_blender.py: 160 x 90 pixels, 4 samples). Frame counts stay as written,
+// as later commands pick frames by number. A command marked with a comment "needs ffmpeg", "needs
+// a GPU" (or "2 GPUs"), "needs mpirun", "needs a display" (Xvfb's), "needs blender" or "needs a
+// cluster" is skipped where that is missing; the set-up scripts (`bash scripts/...`) install
 // packages and build, and are run by people and CI, not by this suite.
 #include <gtest/gtest.h>
 
@@ -143,6 +144,9 @@ std::string shrunk(const std::string& command) {
     } else if (sub == "render") {
         w = replaced(w, {"--width", "--height", "--samples"},
                      {"--width", "160", "--height", "90", "--samples", "1"});
+    } else if (command.find("weir_blender.py") != std::string::npos) {
+        w = replaced(w, {"--width", "--height", "--samples"},
+                     {"--width", "160", "--height", "90", "--samples", "4"});
     }
     return joined(w);
 }
@@ -150,7 +154,8 @@ std::string shrunk(const std::string& command) {
 // What the command needs beyond a CPU, by its marker comment; checks that the docs mark what
 // the command evidently needs.
 struct Needs {
-    bool ffmpeg = false, gpu = false, mpirun = false, display = false, cluster = false;
+    bool ffmpeg = false, gpu = false, mpirun = false, display = false, blender = false,
+         cluster = false;
     int gpus = 0;
 };
 
@@ -160,6 +165,7 @@ Needs needsOf(const DocCommand& c) {
     n.gpu = std::regex_search(c.comment, std::regex(R"(needs.*\bGPUs?\b)"));
     n.mpirun = std::regex_search(c.comment, std::regex(R"(needs.*\bmpirun\b)"));
     n.display = std::regex_search(c.comment, std::regex(R"(needs.*\bdisplay\b)"));
+    n.blender = std::regex_search(c.comment, std::regex(R"(needs.*\bblender\b)"));
     n.cluster = std::regex_search(c.comment, std::regex(R"(needs.*\b(cluster|hostfile)\b)"));
     const std::smatch count = [&] {
         std::smatch m;
@@ -179,7 +185,7 @@ class DocCommands : public Cli {
         fs::create_directories(dir_ / "bin");
         fs::create_symlink(WEIR_BINARY, dir_ / "build" / "weir");
         fs::create_symlink(WEIR_BINARY, dir_ / "bin" / "weir");
-        for (const char* folder : {"examples", "scenes"}) {
+        for (const char* folder : {"examples", "scenes", "tools"}) {
             fs::create_directory_symlink(source / folder, dir_ / folder);
         }
     }
@@ -217,6 +223,9 @@ class DocCommands : public Cli {
             if (std::regex_search(c.command, std::regex(R"(\bweir view\b)"))) {
                 EXPECT_TRUE(needs.display) << "mark it: # needs a display";
             }
+            if (std::regex_search(c.command, std::regex(R"(^blender\b)"))) {
+                EXPECT_TRUE(needs.blender) << "mark it: # needs blender";
+            }
             std::string why;
             if (c.command.rfind("bash scripts/", 0) == 0) {
                 why = "a set-up script (installs packages and builds)";
@@ -231,6 +240,8 @@ class DocCommands : public Cli {
                 why = "no mpirun";
             } else if (needs.display && !onPath("xvfb-run")) {
                 why = "no display (xvfb-run)";
+            } else if (needs.blender && !onPath("blender")) {
+                why = "no blender";
             }
             if (!why.empty()) {
                 std::cout << "[ skipped  ] " << where << " (" << why << ")\n";
