@@ -1,15 +1,22 @@
 // `weir run`: scene in, particle frames out, with progress, logs and blow-up detection.
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "cli/run_folder.h"
 #include "cluster/distributed_simulation.h"
 #include "core/check.h"
 #include "grid/cell_id.h"
+#include "io/background_frame_writer.h"
 #include "io/frame_index.h"
 #include "io/frame_writer.h"
 #include "scene/scene.h"
@@ -34,6 +41,11 @@ std::string howToOpen(FrameFormat format, const std::string& outDir) {
         hint.replace(at, 4, base);
     }
     return hint;
+}
+
+// "Ctrl-C (SIGINT)" for the stop message.
+std::string signalName(int signal) {
+    return signal == SIGINT ? "Ctrl-C (SIGINT)" : signal == SIGTERM ? "SIGTERM" : "a signal";
 }
 
 // The largest particle speed of a frame, m/s.
@@ -84,6 +96,7 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
     // Only rank 0 talks (and writes); the others' errors still name them.
     std::ostream& log = root ? std::cerr : nullStream();
     try {
+        const FrameOutputMode outputMode = frameOutputModeFromEnvironment();
         Scene scene = resolveScene(options.scene);
         if (!options.model.empty()) {
             scene = withFluidModel(scene, options.model);
@@ -161,22 +174,93 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         const auto number = [&](std::int64_t frame) {
             return int(options.firstFrameNumber + frame);
         };
-        std::unique_ptr<FrameWriter> writer;
-        if (root) {
-            writer = std::make_unique<FrameWriter>(outDir, format);
+        // Rank 0 writes the frames on a thread of its own (io/background_frame_writer.h) while
+        // the simulation steps on; WEIR_FRAME_OUTPUT=foreground writes them in between steps as
+        // before, =off not at all (a single-process run then downloads none it need not).
+        const bool framesOff = outputMode == FrameOutputMode::Off;
+        const bool downloads = !framesOff || observer != nullptr || cluster != nullptr;
+        // Declared before the writer: its thread may read them until it is joined.
+        std::atomic<bool> stopping{false};  // the stepping thread ends the run
+        // "frames 0..7 in out/dam_break/ are": the frames written, all of them complete.
+        const auto keptFrames = [&](const BackgroundFrameWriter* written) {
+            const int last = written != nullptr ? written->lastWrittenIndex() : -1;
+            return last < 0 ? std::string("no frames are")
+                            : "frames " + std::to_string(number(0)) + ".." + std::to_string(last) +
+                                  " in " + outDir + "/ are";
+        };
+        std::unique_ptr<BackgroundFrameWriter> output;
+        if (root && !framesOff) {
+            auto writer = std::make_unique<FrameWriter>(outDir, format);
             writer->setScale(report.spacing, options.cellSize);
             writer->setRecord(makeRunRecord(scene.name, scene.sourcePath, scene.json,
                                             sim->particleCount(), report.spacing, WEIR_VERSION));
+            // One frame being filled, one queued, one being written, as host memory allows
+            // (less what a GPU run's download keeps on the host: positions, velocities, ids).
+            const std::size_t count = std::size_t(sim->particleCount());
+            const std::size_t frameBytes = count * 8 * sizeof(Real);
+            const std::size_t staging =
+                backend == Backend::Cuda ? count * (2 * sizeof(Real4) + sizeof(Index)) : 0;
+            const std::size_t available = availableHostBytes();
+            const int held =
+                outputMode == FrameOutputMode::Background
+                    ? framesThatFit(frameBytes, available - std::min(available, staging))
+                    : 1;
+            output = std::make_unique<BackgroundFrameWriter>(std::move(writer), held, outputMode);
         }
-        HostParticles host;
+        // Ctrl-C and SIGTERM stop the run between frames, after the frames handed over are
+        // written (not in a distributed run: its ranks would have to agree where to stop).
+        std::optional<InterruptGuard> interruptGuard;
+        if (cluster == nullptr) {
+            interruptGuard.emplace();
+        }
+        if (output != nullptr && outputMode == FrameOutputMode::Background && cluster == nullptr) {
+            // A signal while the stepping thread is inside a frame's steps (minutes at 1B
+            // particles): once every frame handed over is written, nothing is lost by ending
+            // now rather than after that frame.
+            output->setIdleCheck(
+                [&] {
+                    if (stopSignal() != 0 && !stopping.load()) {
+                        std::cerr << "\nweir: stopped by " << signalName(stopSignal()) << "; "
+                                  << keptFrames(output.get()) << " complete and kept.\n";
+                        std::_Exit(128 + stopSignal());
+                    }
+                },
+                std::chrono::milliseconds(200));
+        }
+        // The frame to fill: one of the writer's (returned to it when written), else this
+        // thread's own.
+        HostParticles ownFrame;
+        const auto frameToFill = [&]() -> std::shared_ptr<HostParticles> {
+            if (output != nullptr) {
+                return output->acquire();
+            }
+            return std::shared_ptr<HostParticles>(std::shared_ptr<HostParticles>(), &ownFrame);
+        };
+        const auto handOver = [&](std::int64_t frame, std::shared_ptr<HostParticles> host) {
+            if (output != nullptr) {
+                output->submit(number(frame), double(frame) * report.frameInterval,
+                               std::move(host));
+            }
+        };
+        // Ends the run early: every frame handed over written first (a write error then wins).
+        const auto stopEarly = [&] {
+            stopping.store(true);
+            if (output != nullptr) {
+                output->finish();
+            }
+        };
+
+        std::shared_ptr<HostParticles> host = frameToFill();
         sim->computeDensity();
-        sim->download(host);
+        if (downloads) {
+            sim->download(*host);
+        }
         // Frame 0 counts like every other: with boundary particles (or a scene whose fluid meets
         // an obstacle) the initial state is compressed already, and the report must say so.
         DensityDeviation worst;
-        if (root) {
-            writer->write(number(0), 0.0, host);
-            worst = densityDeviation(host, sim->params().restDensity);
+        if (root && downloads) {
+            worst = densityDeviation(*host, sim->params().restDensity, false);
+            handOver(0, host);
             log << "weir: frame 0 (the initial state): " << worst.text() << "\n";
             if (worst.max > 0.05) {
                 log << "weir: warning: the initial fluid is compressed by up to "
@@ -187,33 +271,62 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             }
         }
         if (observer != nullptr) {
-            observer->frame(number(0), 0.0, host);
+            observer->frame(number(0), 0.0, *host);
         }
+        host.reset();                // the writer's again once written
+        double downloadSeconds = 0;  // the stepping thread's share of frames 1.., with the check
         Progress progress(frames, options.quiet || !root);
         for (std::int64_t frame = 1; frame <= frames; ++frame) {
+            if (stopRequested()) {
+                stopEarly();
+                progress.finish();
+                const int signal = stopSignal() != 0 ? stopSignal() : SIGINT;
+                log << "weir: stopped by " << signalName(signal)
+                    << " at t = " << rounded(sim->time(), 4) << " s; " << keptFrames(output.get())
+                    << " complete and kept.\n";
+                return 128 + signal;
+            }
             sim->advanceTo(double(frame) * report.frameInterval);
             FaultRecord fault = sim->fault();
             if (fault.code != 0) {
+                stopEarly();
                 progress.finish();
                 log << "weir: error: " << describeFault(fault, sim->params()) << "\nweir: frames "
                     << number(0) << ".." << number(frame - 1) << " in " << outDir
                     << "/ are complete and kept.\n";
                 return kExitBlowUp;
             }
-            sim->download(host);
-            if (!root) {
+            if (!downloads) {
+                progress.update(frame, sim->time(), sim->stepCount());
                 continue;
             }
-            const DensityDeviation deviation = densityDeviation(host, sim->params().restDensity);
+            host = frameToFill();
+            const auto downloadStart = std::chrono::steady_clock::now();
+            sim->download(*host);
+            if (!root) {
+                host.reset();
+                continue;
+            }
+            const double time = double(frame) * report.frameInterval;
+            const DensityDeviation deviation =
+                densityDeviation(*host, sim->params().restDensity, false);
+            downloadSeconds +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - downloadStart)
+                    .count();
             worst.max = std::max(worst.max, deviation.max);
             worst.mean = std::max(worst.mean, deviation.mean);
             progress.setNote(deviation.text() +
-                             solverNote(sim->takeSolverReport(), report.frameInterval, host));
-            writer->write(number(frame), double(frame) * report.frameInterval, host);
+                             solverNote(sim->takeSolverReport(), report.frameInterval, *host));
+            handOver(frame, host);
             if (observer != nullptr) {
-                observer->frame(number(frame), double(frame) * report.frameInterval, host);
+                observer->frame(number(frame), time, *host);
             }
+            host.reset();
             progress.update(frame, sim->time(), sim->stepCount());
+        }
+        stopping.store(true);
+        if (output != nullptr) {
+            output->finish();  // the last frames, before the summary and --usd read them
         }
         progress.finish();
         if (observer != nullptr) {
@@ -224,12 +337,37 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             << formatDuration(seconds) << " ("
             << rounded(seconds > 0 ? double(sim->stepCount()) / seconds : 0.0, 3)
             << " steps/s); worst frame: " << worst.text() << "\n";
+        if (output != nullptr) {
+            // Whether output held the run up: the seconds writing took (in between steps in the
+            // foreground; beside them in the background, where only the wait for a free frame
+            // stalls the simulation).
+            const BackgroundFrameWriter::Stats cost = output->stats();
+            log << "weir: frames downloaded in " << rounded(downloadSeconds, 3)
+                << " s on the simulation's thread, written "
+                << (outputMode == FrameOutputMode::Background ? "in the background"
+                                                              : "in between steps")
+                << ": " << rounded(double(cost.frameBytes) / 1e6, 3) << " MB in "
+                << rounded(cost.writeSeconds, 3) << " s ("
+                << rounded(cost.writeSeconds > 0 ? double(cost.frameBytes) / 1e6 / cost.writeSeconds
+                                                 : 0.0,
+                           3)
+                << " MB/s)";
+            if (outputMode == FrameOutputMode::Background) {
+                log << "; the simulation waited " << rounded(cost.waitSeconds, 3) << " s"
+                    << " for free frames (" << output->capacity() << " held at most)";
+            }
+            log << "\n";
+        }
         if (cluster != nullptr) {
             log << "weir: borders moved " << cluster->exchangeStats().rebalances
                 << " times to keep the ranks balanced\n";
         }
-        log << "weir: " << frames + 1 << " frames in " << outDir << "/: open "
-            << howToOpen(format, outDir) << "; or draw them: weir render " << outDir << "\n";
+        if (framesOff) {
+            log << "weir: frame output off (WEIR_FRAME_OUTPUT=off): no frames written\n";
+        } else {
+            log << "weir: " << frames + 1 << " frames in " << outDir << "/: open "
+                << howToOpen(format, outDir) << "; or draw them: weir render " << outDir << "\n";
+        }
         return kExitOk;
     } catch (...) {
         return reportCaughtError(*comm);
