@@ -1,0 +1,20 @@
+// A backend's particle arrays (cell order) to a host frame in id order, on all cores.
+#pragma once
+
+#include <cstddef>
+
+#include "core/config.h"
+#include "core/vec3.h"
+#include "physics/sph_params.h"
+#include "solver/particles.h"
+
+namespace weir {
+
+// out (resized to n) gets particle i's position, velocity and density (vel[i].w) at out[ids[i]],
+// with the pressure the equation of state gives its density; ids is a permutation of 0..n-1.
+// Host memory only. Runs on all cores (OpenMP): at a frame of a GPU run they are idle, and at
+// 1M particles the serial scatter took 0.16 s a frame on the CPU of bench/NOTES.md's F1.
+void scatterToHostFrame(const Index* ids, const Real4* pos, const Real4* vel, std::size_t n,
+                        const SphParams& params, HostParticles& out);
+
+}  // namespace weir
