@@ -335,8 +335,8 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         double seconds = progress.elapsedSeconds();
         log << "weir: done, " << frames + 1 << " frames, " << sim->stepCount() << " steps in "
             << formatDuration(seconds) << " ("
-            << rounded(seconds > 0 ? double(sim->stepCount()) / seconds : 0.0, 3)
-            << " steps/s); worst frame: " << worst.text() << "\n";
+            << rounded(seconds > 0 ? double(sim->stepCount()) / seconds : 0.0, 3) << " steps/s)"
+            << (downloads ? "; worst frame: " + worst.text() : "") << "\n";
         if (output != nullptr) {
             // Whether output held the run up: the seconds writing took (in between steps in the
             // foreground; beside them in the background, where only the wait for a free frame

@@ -12,8 +12,8 @@ namespace weir {
 
 // out (resized to n) gets particle i's position, velocity and density (vel[i].w) at out[ids[i]],
 // with the pressure the equation of state gives its density; ids is a permutation of 0..n-1.
-// Host memory only. Runs on all cores (OpenMP): at a frame of a GPU run they are idle, and at
-// 1M particles the serial scatter took 0.16 s a frame on the CPU of bench/NOTES.md's F1.
+// Host memory only. Runs on all cores (OpenMP): at a frame of a GPU run they are idle, and the
+// stepping thread waits for it (bench/NOTES.md F2: 1M particles, 11-12 ms serial, 6 on 2 cores).
 void scatterToHostFrame(const Index* ids, const Real4* pos, const Real4* vel, std::size_t n,
                         const SphParams& params, HostParticles& out);
 
