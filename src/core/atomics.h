@@ -14,4 +14,13 @@ WEIR_HD inline Index atomicFetchAdd(Index* target, Index v) {
 #endif
 }
 
+// Stores v at *target where other threads may store the same value at the same time (a flag).
+WEIR_HD inline void atomicStoreFlag(std::int32_t* target, std::int32_t v) {
+#if defined(__CUDA_ARCH__)
+    *reinterpret_cast<volatile std::int32_t*>(target) = v;
+#else
+    __atomic_store_n(target, v, __ATOMIC_RELAXED);
+#endif
+}
+
 }  // namespace weir

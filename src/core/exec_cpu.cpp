@@ -83,12 +83,25 @@ void CpuExec::sortPairs(const WideCellKey* keysIn, WideCellKey* keysOut, const I
                    sortValuesScratch_, histogram_);
 }
 
-void CpuExec::inclusiveScan(const Index* in, Index* out, Index n) {
-    Index sum = 0;
+namespace {
+
+template <class T>
+void serialInclusiveScan(const T* in, T* out, Index n) {
+    T sum = 0;
     for (Index i = 0; i < n; ++i) {
         sum += in[i];
         out[i] = sum;
     }
+}
+
+}  // namespace
+
+void CpuExec::inclusiveScan(const Index* in, Index* out, Index n) {
+    serialInclusiveScan(in, out, n);
+}
+
+void CpuExec::inclusiveScan(const std::int64_t* in, std::int64_t* out, Index n) {
+    serialInclusiveScan(in, out, n);
 }
 
 void CpuExec::inclusiveMaxScan(Index* data, Index n) {

@@ -62,6 +62,7 @@ class CpuExec {
                    Index* valuesOut, Index n, int keyBits);
     // out[i] = in[0] + ... + in[i]; in and out may alias.
     void inclusiveScan(const Index* in, Index* out, Index n);
+    void inclusiveScan(const std::int64_t* in, std::int64_t* out, Index n);
     // data[i] = max(data[0], ..., data[i]), in place.
     void inclusiveMaxScan(Index* data, Index n);
     // *out = in[0] + ... + in[n - 1] (0 for n = 0) and *out = max(in[0], ..., in[n - 1]) (the

@@ -62,7 +62,8 @@ void CudaExec::sortPairs(const WideCellKey* keysIn, WideCellKey* keysOut, const 
     cubSortPairs(sortTemp_, stream_, keysIn, keysOut, valuesIn, valuesOut, n, keyBits);
 }
 
-void CudaExec::inclusiveScan(const Index* in, Index* out, Index n) {
+template <class T>
+void CudaExec::deviceInclusiveScan(const T* in, T* out, Index n) {
     std::size_t bytes = 0;
     WEIR_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, bytes, in, out, n, stream_));
     if (scanTemp_.size() < bytes) {
@@ -70,6 +71,14 @@ void CudaExec::inclusiveScan(const Index* in, Index* out, Index n) {
     }
     bytes = scanTemp_.size();
     WEIR_CUDA_CHECK(cub::DeviceScan::InclusiveSum(scanTemp_.data(), bytes, in, out, n, stream_));
+}
+
+void CudaExec::inclusiveScan(const Index* in, Index* out, Index n) {
+    deviceInclusiveScan(in, out, n);
+}
+
+void CudaExec::inclusiveScan(const std::int64_t* in, std::int64_t* out, Index n) {
+    deviceInclusiveScan(in, out, n);
 }
 
 unsigned char* CudaExec::reduceScratch(std::size_t bytes) {

@@ -170,6 +170,7 @@ class CudaExec {
                    Index* valuesOut, Index n, int keyBits);
     // Inclusive prefix sum by CUB; in and out may alias.
     void inclusiveScan(const Index* in, Index* out, Index n);
+    void inclusiveScan(const std::int64_t* in, std::int64_t* out, Index n);
     // data[i] = max(data[0], ..., data[i]), in place, by CUB.
     void inclusiveMaxScan(Index* data, Index n);
     // *out = the sum and the maximum of in[0, n) by CUB, out in device memory: no host round
@@ -285,6 +286,8 @@ class CudaExec {
    private:
     void download1(void* dst, const void* src, std::size_t bytes);
     cudaEvent_t takeEvent();
+    template <class T>
+    void deviceInclusiveScan(const T* in, T* out, Index n);
 
     cudaStream_t stream_ = nullptr;
     int multiprocessors_ = 1;

@@ -206,6 +206,9 @@ struct AnisotropicField {
     Real threshold;
     Real inverseSlope;  // spacings per unit of volume fraction
 
+    // The value beyond every kernel's reach (fraction 0), as valueAt computes it there.
+    WEIR_HD float valueFarAway() const { return float(threshold * inverseSlope); }
+
     WEIR_HD float valueAt(const Vec3& x) const {
         Real fraction = 0;
         centres.forEachNear(x, kernelRadius2, [&](Index j) {

@@ -14,6 +14,12 @@ namespace weir {
 // A field sampled on a regular lattice of nx * ny * nz points, X fastest. A sample is inside the
 // fluid where its value is below iso. Each sample owns the three lattice edges that leave it
 // towards +X, +Y and +Z; an edge is cut where its ends lie on different sides.
+//
+// The functions below take any lattice view with this one's interface: value(x, y, z) at every
+// sample of the lattice, and its samples stored in slots (slotCount() of them): slotOf(x, y, z)
+// is a sample's slot, slotSample(i, ...) a slot's sample (false for a slot that holds none).
+// This dense view stores every sample; SparseFieldView (sparse_lattice.h) only those near the
+// fluid.
 struct SampledFieldView {
     const float* values;
     float iso;
@@ -21,25 +27,17 @@ struct SampledFieldView {
     Vec3 origin;
     Real cellSize;
 
-    WEIR_HD Index sampleIndex(int x, int y, int z) const {
-        return (Index(z) * Index(ny) + Index(y)) * Index(nx) + Index(x);
+    WEIR_HD std::int64_t slotOf(int x, int y, int z) const {
+        return (std::int64_t(z) * ny + y) * std::int64_t(nx) + x;
     }
-    WEIR_HD void sampleCoords(Index i, int& x, int& y, int& z) const {
+    WEIR_HD float value(int x, int y, int z) const { return values[slotOf(x, y, z)]; }
+    WEIR_HD std::int64_t slotCount() const { return std::int64_t(nx) * ny * std::int64_t(nz); }
+    WEIR_HD bool slotSample(std::int64_t i, int& x, int& y, int& z) const {
         x = int(i % nx);
-        const Index rest = i / nx;
+        const std::int64_t rest = i / nx;
         y = int(rest % ny);
         z = int(rest / ny);
-    }
-    WEIR_HD bool inside(Index i) const { return values[i] < iso; }
-    WEIR_HD Index cellCount() const { return Index(nx - 1) * Index(ny - 1) * Index(nz - 1); }
-    WEIR_HD void cellCoords(Index c, int& x, int& y, int& z) const {
-        x = int(c % (nx - 1));
-        const Index rest = c / (nx - 1);
-        y = int(rest % (ny - 1));
-        z = int(rest / (ny - 1));
-    }
-    WEIR_HD Index axisStride(int axis) const {
-        return axis == 0 ? Index(1) : (axis == 1 ? Index(nx) : Index(nx) * Index(ny));
+        return true;
     }
 };
 
@@ -48,17 +46,17 @@ WEIR_HD inline int bitCount3(int mask) {
 }
 
 // Bit a set where the edge from sample (x, y, z) along axis a is cut.
-WEIR_HD inline int cutEdgesOfSample(const SampledFieldView& f, int x, int y, int z) {
-    const Index i = f.sampleIndex(x, y, z);
-    const bool in = f.inside(i);
+template <class Lattice>
+WEIR_HD int cutEdgesOfSample(const Lattice& f, int x, int y, int z) {
+    const bool in = f.value(x, y, z) < f.iso;
     int mask = 0;
-    if (x + 1 < f.nx && f.inside(i + 1) != in) {
+    if (x + 1 < f.nx && (f.value(x + 1, y, z) < f.iso) != in) {
         mask |= 1;
     }
-    if (y + 1 < f.ny && f.inside(i + f.axisStride(1)) != in) {
+    if (y + 1 < f.ny && (f.value(x, y + 1, z) < f.iso) != in) {
         mask |= 2;
     }
-    if (z + 1 < f.nz && f.inside(i + f.axisStride(2)) != in) {
+    if (z + 1 < f.nz && (f.value(x, y, z + 1) < f.iso) != in) {
         mask |= 4;
     }
     return mask;
@@ -66,17 +64,19 @@ WEIR_HD inline int cutEdgesOfSample(const SampledFieldView& f, int x, int y, int
 
 // The field's gradient at a sample by central differences (one-sided on the lattice's faces),
 // in field units per cell.
-WEIR_HD inline Vec3f sampleGradient(const SampledFieldView& f, int x, int y, int z) {
-    const int coords[3] = {x, y, z};
+template <class Lattice>
+WEIR_HD Vec3f sampleGradient(const Lattice& f, int x, int y, int z) {
     const int dims[3] = {f.nx, f.ny, f.nz};
-    const Index i = f.sampleIndex(x, y, z);
+    const float here = f.value(x, y, z);
     float g[3];
     for (int a = 0; a < 3; ++a) {
-        const Index stride = f.axisStride(a);
-        const bool hasLow = coords[a] > 0, hasHigh = coords[a] + 1 < dims[a];
-        const float high = hasHigh ? f.values[i + stride] : f.values[i];
-        const float low = hasLow ? f.values[i - stride] : f.values[i];
-        g[a] = (high - low) / float((hasLow ? 1 : 0) + (hasHigh ? 1 : 0));
+        int low[3] = {x, y, z}, high[3] = {x, y, z};
+        --low[a];
+        ++high[a];
+        const bool hasLow = low[a] >= 0, hasHigh = high[a] < dims[a];
+        const float highValue = hasHigh ? f.value(high[0], high[1], high[2]) : here;
+        const float lowValue = hasLow ? f.value(low[0], low[1], low[2]) : here;
+        g[a] = (highValue - lowValue) / float((hasLow ? 1 : 0) + (hasHigh ? 1 : 0));
     }
     return {g[0], g[1], g[2]};
 }
@@ -84,14 +84,13 @@ WEIR_HD inline Vec3f sampleGradient(const SampledFieldView& f, int x, int y, int
 // The vertex where the cut edge from sample (x, y, z) along `axis` crosses iso, by linear
 // interpolation, and its unit normal from the interpolated gradient: out of the fluid, since
 // the field grows outwards.
-WEIR_HD inline void edgeVertex(const SampledFieldView& f, int x, int y, int z, int axis,
-                               Vec3f& position, Vec3f& normal) {
-    const Index i = f.sampleIndex(x, y, z);
-    const Index j = i + f.axisStride(axis);
-    const float a = f.values[i], b = f.values[j];
-    const float t = (f.iso - a) / (b - a);  // in [0, 1]: a and b lie on different sides of iso
+template <class Lattice>
+WEIR_HD void edgeVertex(const Lattice& f, int x, int y, int z, int axis, Vec3f& position,
+                        Vec3f& normal) {
     int end[3] = {x, y, z};
     end[axis] += 1;
+    const float a = f.value(x, y, z), b = f.value(end[0], end[1], end[2]);
+    const float t = (f.iso - a) / (b - a);  // in [0, 1]: a and b lie on different sides of iso
     const Vec3f ga = sampleGradient(f, x, y, z), gb = sampleGradient(f, end[0], end[1], end[2]);
     Vec3f g = ga + (gb - ga) * t;
     const float norm = length(g);
@@ -107,11 +106,12 @@ WEIR_HD inline void edgeVertex(const SampledFieldView& f, int x, int y, int z, i
 }
 
 // The case of cell (x, y, z): bit c set where its corner c (marching_cubes_tables.h) is inside.
-WEIR_HD inline int cubeCase(const SampledFieldView& f, int x, int y, int z) {
+template <class Lattice>
+WEIR_HD int cubeCase(const Lattice& f, int x, int y, int z) {
     int cubeCase = 0;
     for (int c = 0; c < 8; ++c) {
-        const Index i = f.sampleIndex(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1));
-        cubeCase |= f.inside(i) ? (1 << c) : 0;
+        const float v = f.value(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1));
+        cubeCase |= v < f.iso ? (1 << c) : 0;
     }
     return cubeCase;
 }
@@ -123,18 +123,20 @@ struct MarchingCubesTableView {
 };
 
 // Vertex numbering: the cut edges of sample s get the vertices firstVertex(s), firstVertex(s) + 1,
-// ... in axis order, where vertexEnd is the inclusive prefix sum of the samples' cut-edge counts.
-WEIR_HD inline Index edgeVertexIndex(const SampledFieldView& f, const Index* vertexEnd, int x,
-                                     int y, int z, int axis) {
+// ... in axis order, where vertexEnd is the inclusive prefix sum of the cut-edge counts of the
+// samples, slot by slot.
+template <class Lattice>
+WEIR_HD std::int64_t edgeVertexIndex(const Lattice& f, const std::int64_t* vertexEnd, int x, int y,
+                                     int z, int axis) {
     const int mask = cutEdgesOfSample(f, x, y, z);
-    return vertexEnd[f.sampleIndex(x, y, z)] - bitCount3(mask) +
-           bitCount3(mask & ((1 << axis) - 1));
+    return vertexEnd[f.slotOf(x, y, z)] - bitCount3(mask) + bitCount3(mask & ((1 << axis) - 1));
 }
 
 // Writes the triangles of cell (x, y, z) as vertex indices, three per triangle, to out.
-WEIR_HD inline void cellTriangles(const SampledFieldView& f, const MarchingCubesTableView& table,
-                                  const Index* vertexEnd, int x, int y, int z, int cubeCaseBits,
-                                  std::uint32_t* out) {
+template <class Lattice>
+WEIR_HD void cellTriangles(const Lattice& f, const MarchingCubesTableView& table,
+                           const std::int64_t* vertexEnd, int x, int y, int z, int cubeCaseBits,
+                           std::uint32_t* out) {
     const int count = table.triangleCount[cubeCaseBits];
     const std::uint8_t* edges = table.triangleEdges + cubeCaseBits * 3 * kMaxTrianglesPerCube;
     for (int k = 0; k < 3 * count; ++k) {

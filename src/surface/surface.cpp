@@ -2,6 +2,7 @@
 #include "surface/surface.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -10,13 +11,15 @@
 
 #include "core/exec_cpu.h"
 #include "surface/sliver_cleanup.h"
+#include "surface/sparse_lattice.h"
 #include "surface/surface_field.h"
 #include "surface/surface_pipeline.h"
 
 namespace weir {
 
 #if defined(WEIR_HAS_CUDA)
-TriangleMesh reconstructSurfaceCuda(const HostParticles& particles, const SurfacePlan& plan);
+TriangleMesh reconstructSurfaceCuda(const HostParticles& particles, const SurfacePlan& plan,
+                                    StageTimes* stages);
 #endif
 
 namespace {
@@ -107,9 +110,9 @@ SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& op
         throw std::invalid_argument("kernel radius ratio is " + text(options.kernelRadiusRatio) +
                                     ", must be in [1, 5] particle spacings");
     }
-    if (options.maxSamples < 8) {
+    if (options.maxSamples < 0 || (options.maxSamples > 0 && options.maxSamples < 8)) {
         throw std::invalid_argument("sample limit is " + text(double(options.maxSamples)) +
-                                    ", must be at least 8");
+                                    ", must be at least 8 (or 0 for half the free memory)");
     }
     const std::size_t n = particles.size();
     if (n == 0) {
@@ -164,50 +167,84 @@ SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& op
     }
 
     // Lattice over the particles plus the kernel radius and two cells, so that the surface never
-    // touches its faces and comes out closed.
+    // touches its faces and comes out closed. Only its blocks near the fluid are stored
+    // (sparse_lattice.h), but its block table covers the whole box.
     const double margin = plan.kernelRadius + 2 * plan.cellSize;
     plan.origin = plan.particleMin - Vec3d(margin, margin, margin);
-    double samples = 1;
+    plan.maxSamples = options.maxSamples;
+    double samples = 1, blocks = 1;
     for (int a = 0; a < 3; ++a) {
         const double extent = plan.particleMax[a] - plan.particleMin[a] + 2 * margin;
         const double count = std::ceil(extent / plan.cellSize) + 1;
         samples *= count;
+        blocks *= std::ceil(count / kSurfaceBlockEdge);
         plan.dims[a] = int(std::min(count, 2e9));
     }
-    const double limit = double(std::min<std::int64_t>(options.maxSamples, 1ll << 28));
-    if (samples > limit) {
+    if (blocks > double(kMaxSurfaceBlocks)) {
+        const double limit = double(kMaxSurfaceBlocks) * kSurfaceBlockSamples;
         std::ostringstream message;
-        message << "the surface lattice would need " << plan.dims[0] << " x " << plan.dims[1]
+        message << "the surface lattice's box would span " << plan.dims[0] << " x " << plan.dims[1]
                 << " x " << plan.dims[2] << " = " << samples << " samples at cell size "
                 << plan.cellSize << " m (particles spanning "
                 << text(plan.particleMax.x - plan.particleMin.x) << " x "
                 << text(plan.particleMax.y - plan.particleMin.y) << " x "
                 << text(plan.particleMax.z - plan.particleMin.z) << " m), more than the limit of "
-                << std::int64_t(limit) << "; use a cell size of at least "
+                << limit << " for its block table; use a cell size of at least "
                 << plan.cellSize * std::cbrt(samples / limit) * 1.05 << " m";
         throw SurfaceError(message.str());
     }
+    // Bins of R / 2, wider where the box would need more than kMaxSurfaceBins (a frame of a few
+    // drops far apart): the field then looks at more particles per sample, but nothing grows
+    // with the box but the bin table.
     plan.binSize = std::max(plan.kernelRadius / 2, plan.cellSize);
+    double bins = 1;
+    for (int a = 0; a < 3; ++a) {
+        bins *= std::ceil((plan.particleMax[a] - plan.particleMin[a]) / plan.binSize + 1e-6) + 1;
+    }
+    if (bins > double(kMaxSurfaceBins)) {
+        plan.binSize *= std::cbrt(bins / double(kMaxSurfaceBins)) * 1.01;
+    }
     return plan;
 }
 
+std::string surfaceTooLargeMessage(const SurfacePlan& plan, std::int64_t samples,
+                                   std::int64_t limit, bool limitGiven, const char* memoryName) {
+    std::ostringstream message;
+    message << "the surface lattice near the fluid needs " << samples << " samples ("
+            << samples / kSurfaceBlockSamples << " blocks of " << kSurfaceBlockSamples
+            << ") at cell size " << plan.cellSize << " m, more than the limit of " << limit;
+    if (limitGiven) {
+        message << " given";
+    } else {
+        message << " (" << kBytesPerSurfaceSample << " bytes each in half the free memory of "
+                << memoryName << ", at most " << kMaxSurfaceSamples << ")";
+    }
+    message << "; use a cell size of at least "
+            << plan.cellSize * std::cbrt(double(samples) / double(limit)) * 1.05 << " m";
+    return message.str();
+}
+
 TriangleMesh reconstructSurface(Backend backend, const HostParticles& particles,
-                                const SurfacePlan& plan) {
+                                const SurfacePlan& plan, StageTimes* stages) {
+    TriangleMesh mesh;
     if (backend == Backend::Cuda) {
 #if defined(WEIR_HAS_CUDA)
-        TriangleMesh mesh = reconstructSurfaceCuda(particles, plan);
-        if (plan.removeSlivers) {
-            removeSlivers(mesh, plan.cellSize);
-        }
-        return mesh;
+        mesh = reconstructSurfaceCuda(particles, plan, stages);
 #else
         throw SurfaceError("this weir was built without CUDA; use the cpu backend");
 #endif
+    } else {
+        CpuExec exec;
+        mesh = extractSurface(exec, particles, plan, "host memory", stages);
     }
-    CpuExec exec;
-    TriangleMesh mesh = extractSurface(exec, particles, plan);
     if (plan.removeSlivers) {
+        const auto start = std::chrono::steady_clock::now();
         removeSlivers(mesh, plan.cellSize);
+        if (stages != nullptr) {
+            stages->add("surface slivers", std::chrono::duration<double, std::milli>(
+                                               std::chrono::steady_clock::now() - start)
+                                               .count());
+        }
     }
     return mesh;
 }

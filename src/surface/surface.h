@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/backend.h"
+#include "core/stage_timer.h"
 #include "core/vec3.h"
 #include "solver/particles.h"
 #include "surface/triangle_mesh.h"
@@ -38,9 +39,22 @@ struct SurfaceOptions {
     double spacing = 0;   // particle spacing d [m]; 0: the median nearest-neighbour distance
     double cellSize = 0;  // marching-cubes cell edge [m]; 0: d / 2
     double iso = 0;       // iso-value in particle spacings: 0 is the fluid's surface, > 0 inflates
-    double kernelRadiusRatio = 2;                     // kernel radius R / d
-    std::int64_t maxSamples = std::int64_t(1) << 26;  // field samples allowed (12 bytes each)
+    double kernelRadiusRatio = 2;  // kernel radius R / d
+    // Field samples allowed near the fluid (kBytesPerSurfaceSample each); 0: as many as half the
+    // backend's free memory holds, up to kMaxSurfaceSamples.
+    std::int64_t maxSamples = 0;
 };
+
+// The sparse lattice (sparse_lattice.h) stores the samples of the blocks of 8^3 samples near
+// some particle: a sample costs its value (4 bytes) and two 64-bit prefix sums (vertices,
+// triangles). Kernels index samples with 32-bit integers; the lattice's block table holds one
+// entry (12 bytes) per block of the particles' bounding box; the particle bins (grid/dense_grid.h)
+// one per bin, widened past R / 2 where a sparse frame's box would need more.
+constexpr std::int64_t kBytesPerSurfaceSample = 20;
+constexpr std::int64_t kMaxSurfaceSamples = (std::int64_t(1) << 31) - 512;
+constexpr std::int64_t kMaxSurfaceBlocks = std::int64_t(1) << 28;
+constexpr std::int64_t kMaxSurfaceBins = std::int64_t(1) << 27;
+constexpr std::int64_t kMaxSurfaceVertices = std::int64_t(1) << 32;  // 32-bit triangle indices
 
 // Everything derived from the options and the particles, in metres.
 struct SurfacePlan {
@@ -58,7 +72,8 @@ struct SurfacePlan {
     Vec3d origin;  // the first field sample; the lattice covers the particles plus R + 2 cells
     int dims[3] = {0, 0, 0};  // samples per axis
     Vec3d particleMin, particleMax;
-    double binSize = 0;  // edge of the particle bins, >= R / 2
+    double binSize = 0;           // edge of the particle bins, >= R / 2
+    std::int64_t maxSamples = 0;  // SurfaceOptions::maxSamples
     std::int64_t sampleCount() const {
         return std::int64_t(dims[0]) * std::int64_t(dims[1]) * std::int64_t(dims[2]);
     }
@@ -73,11 +88,20 @@ SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& op
 // has a neighbour at a positive distance.
 double estimateParticleSpacing(const HostParticles& particles);
 
-// The iso-surface of the plan's field (surface_field.h, anisotropy.h), by marching cubes, then
-// (plan.removeSlivers) cleaned of slivers on the host (sliver_cleanup.h); vertices are shared
-// between triangles (closed where the fluid is), normals point out of the fluid.
+// The message of a sparse lattice that needs `samples` samples near the fluid, more than `limit`
+// (given by the user, or from the free memory of `memoryName`): the numbers and a cell size that
+// fits.
+std::string surfaceTooLargeMessage(const SurfacePlan& plan, std::int64_t samples,
+                                   std::int64_t limit, bool limitGiven, const char* memoryName);
+
+// The iso-surface of the plan's field (surface_field.h, anisotropy.h), by marching cubes over a
+// sparse lattice (sparse_lattice.h), then (plan.removeSlivers) cleaned of slivers on the host
+// (sliver_cleanup.h); vertices are shared between triangles (closed where the fluid is), normals
+// point out of the fluid. `stages` gets each stage's wall time in ms where given ("surface
+// upload", "surface bins", "surface anisotropy", "surface blocks", "surface field", "surface
+// vertices", "surface triangles", "surface download", "surface slivers").
 TriangleMesh reconstructSurface(Backend backend, const HostParticles& particles,
-                                const SurfacePlan& plan);
+                                const SurfacePlan& plan, StageTimes* stages = nullptr);
 TriangleMesh reconstructSurface(Backend backend, const HostParticles& particles,
                                 const SurfaceOptions& options, SurfacePlan* planOut = nullptr);
 

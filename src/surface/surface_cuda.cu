@@ -5,14 +5,16 @@
 
 namespace weir {
 
-template TriangleMesh extractSurface<CudaExec>(CudaExec&, const HostParticles&, const SurfacePlan&);
+template TriangleMesh extractSurface<CudaExec>(CudaExec&, const HostParticles&, const SurfacePlan&,
+                                               const char*, StageTimes*);
 
-TriangleMesh reconstructSurfaceCuda(const HostParticles& particles, const SurfacePlan& plan) {
+TriangleMesh reconstructSurfaceCuda(const HostParticles& particles, const SurfacePlan& plan,
+                                    StageTimes* stages) {
     if (!cudaDeviceAvailable()) {
         throw SurfaceError("no CUDA device is visible; use the cpu backend");
     }
     CudaExec exec;
-    return extractSurface(exec, particles, plan);
+    return extractSurface(exec, particles, plan, "the GPU", stages);
 }
 
 }  // namespace weir

@@ -40,6 +40,9 @@ struct ZhuBridsonField {
     Real inverseSpacing;
     Real farValue;
 
+    // The value beyond every particle's reach.
+    WEIR_HD float valueFarAway() const { return float(farValue); }
+
     WEIR_HD float valueAt(const Vec3& x) const {
         Real weightSum = 0;
         Vec3 weightedOffset;  // sum of k_j (x_j - x): the mean taken relative to x keeps precision

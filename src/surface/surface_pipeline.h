@@ -1,16 +1,23 @@
 // Surface reconstruction as a short list of stages over one backend's primitives (CpuExec or
-// CudaExec): bin the particles, sample the field, number the cut edges by a prefix sum, place
-// their vertices, count each cell's triangles, prefix sum, write the triangles. The prefix sums
-// fix every vertex's and triangle's slot, so both backends give the same mesh in the same order.
+// CudaExec): bin the particles, flag the lattice blocks near them (sparse_lattice.h), sample the
+// field in those blocks, number the cut edges by a prefix sum, place their vertices, count each
+// cell's triangles, prefix sum, write the triangles. The prefix sums fix every vertex's and
+// triangle's slot, so both backends give the same mesh in the same order.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
 #include <vector>
 
+#include "core/exec_cpu.h"
+#include "core/stage_timer.h"
 #include "grid/cell_id.h"
 #include "grid/dense_grid.h"
 #include "surface/anisotropy.h"
 #include "surface/marching_cubes.h"
+#include "surface/sparse_lattice.h"
 #include "surface/surface.h"
 #include "surface/surface_field.h"
 
@@ -19,33 +26,44 @@ namespace weir {
 template <class Exec, class T>
 using ExecBuffer = typename Exec::template Buffer<T>;
 
-// Marching cubes over a field already sampled on the backend (lattice.values lives there).
-template <class Exec>
-TriangleMesh marchingCubes(Exec& exec, const SampledFieldView& lattice) {
-    const Index samples = Index(lattice.nx) * Index(lattice.ny) * Index(lattice.nz);
-    // Vertices: one per cut edge, numbered by a prefix sum over the samples owning the edges.
-    ExecBuffer<Exec, Index> vertexEnd(static_cast<std::size_t>(samples));
+// Marching cubes over a field already sampled on the backend (a SampledFieldView or a
+// SparseFieldView whose arrays live there): each slot's cut edges, a prefix sum that numbers
+// their vertices, each cell's triangle count from its case, a prefix sum, the triangles. A cell
+// belongs to the slot of its lowest corner. Counts are 64-bit: a lattice of up to 2^31 samples
+// has up to 3 * 2^31 cut edges.
+template <class Exec, class Lattice>
+TriangleMesh marchingCubes(Exec& exec, const Lattice& lattice) {
+    const Index slots = Index(lattice.slotCount());
+    exec.stageBegin("surface vertices");
+    ExecBuffer<Exec, std::int64_t> vertexEnd(static_cast<std::size_t>(slots));
     {
-        Index* end = vertexEnd.data();
-        exec.forEach(samples, [=] WEIR_HD(Index i) {
+        std::int64_t* end = vertexEnd.data();
+        exec.forEach(slots, [=] WEIR_HD(Index i) {
             int x, y, z;
-            lattice.sampleCoords(i, x, y, z);
-            end[i] = bitCount3(cutEdgesOfSample(lattice, x, y, z));
+            end[i] =
+                lattice.slotSample(i, x, y, z) ? bitCount3(cutEdgesOfSample(lattice, x, y, z)) : 0;
         });
-        exec.inclusiveScan(end, end, samples);
+        exec.inclusiveScan(end, end, slots);
     }
-    const Index vertexCount = exec.readOne(vertexEnd, std::size_t(samples - 1));
+    const std::int64_t vertexCount = exec.readOne(vertexEnd, std::size_t(slots - 1));
+    if (vertexCount > kMaxSurfaceVertices) {
+        throw SurfaceError("the surface has " + std::to_string(vertexCount) +
+                           " vertices, more than a mesh's 32-bit indices allow (" +
+                           std::to_string(kMaxSurfaceVertices) + "); use a larger cell size");
+    }
     ExecBuffer<Exec, Vec3f> positions(static_cast<std::size_t>(vertexCount)),
         normals(static_cast<std::size_t>(vertexCount));
     {
-        const Index* end = vertexEnd.data();
+        const std::int64_t* end = vertexEnd.data();
         Vec3f* positionOut = positions.data();
         Vec3f* normalOut = normals.data();
-        exec.forEach(samples, [=] WEIR_HD(Index i) {
+        exec.forEach(slots, [=] WEIR_HD(Index i) {
             int x, y, z;
-            lattice.sampleCoords(i, x, y, z);
+            if (!lattice.slotSample(i, x, y, z)) {
+                return;
+            }
             const int mask = cutEdgesOfSample(lattice, x, y, z);
-            Index v = end[i] - bitCount3(mask);
+            std::int64_t v = end[i] - bitCount3(mask);
             for (int axis = 0; axis < 3; ++axis) {
                 if ((mask >> axis) & 1) {
                     edgeVertex(lattice, x, y, z, axis, positionOut[v], normalOut[v]);
@@ -54,39 +72,45 @@ TriangleMesh marchingCubes(Exec& exec, const SampledFieldView& lattice) {
             }
         });
     }
+    exec.stageEnd("surface vertices");
 
-    // Triangles: each cell's count from its case, a prefix sum, then each cell writes its own.
+    exec.stageBegin("surface triangles");
     ExecBuffer<Exec, std::uint8_t> tableCounts, tableEdges;
     exec.upload(tableCounts, kMarchingCubesTable.triangleCount.data(), 256);
     exec.upload(tableEdges, kMarchingCubesTable.triangleEdges[0].data(),
                 256 * 3 * kMaxTrianglesPerCube);
     const MarchingCubesTableView table{tableCounts.data(), tableEdges.data()};
-    const Index cells = lattice.cellCount();
-    ExecBuffer<Exec, Index> triangleEnd(static_cast<std::size_t>(cells));
+    ExecBuffer<Exec, std::int64_t> triangleEnd(static_cast<std::size_t>(slots));
     {
-        Index* end = triangleEnd.data();
-        exec.forEach(cells, [=] WEIR_HD(Index c) {
+        std::int64_t* end = triangleEnd.data();
+        exec.forEach(slots, [=] WEIR_HD(Index i) {
             int x, y, z;
-            lattice.cellCoords(c, x, y, z);
-            end[c] = table.triangleCount[cubeCase(lattice, x, y, z)];
+            const bool cell = lattice.slotSample(i, x, y, z) && x + 1 < lattice.nx &&
+                              y + 1 < lattice.ny && z + 1 < lattice.nz;
+            end[i] = cell ? table.triangleCount[cubeCase(lattice, x, y, z)] : 0;
         });
-        exec.inclusiveScan(end, end, cells);
+        exec.inclusiveScan(end, end, slots);
     }
-    const Index triangleCount = exec.readOne(triangleEnd, std::size_t(cells - 1));
+    const std::int64_t triangleCount = exec.readOne(triangleEnd, std::size_t(slots - 1));
     ExecBuffer<Exec, std::uint32_t> indices(3 * static_cast<std::size_t>(triangleCount));
     {
-        const Index* end = triangleEnd.data();
-        const Index* verticesEnd = vertexEnd.data();
+        const std::int64_t* end = triangleEnd.data();
+        const std::int64_t* verticesEnd = vertexEnd.data();
         std::uint32_t* out = indices.data();
-        exec.forEach(cells, [=] WEIR_HD(Index c) {
+        exec.forEach(slots, [=] WEIR_HD(Index i) {
             int x, y, z;
-            lattice.cellCoords(c, x, y, z);
+            if (!lattice.slotSample(i, x, y, z) || x + 1 >= lattice.nx || y + 1 >= lattice.ny ||
+                z + 1 >= lattice.nz) {
+                return;
+            }
             const int cubeCaseBits = cubeCase(lattice, x, y, z);
-            const Index first = end[c] - table.triangleCount[cubeCaseBits];
+            const std::int64_t first = end[i] - table.triangleCount[cubeCaseBits];
             cellTriangles(lattice, table, verticesEnd, x, y, z, cubeCaseBits, out + 3 * first);
         });
     }
+    exec.stageEnd("surface triangles");
 
+    exec.stageBegin("surface download");
     TriangleMesh mesh;
     mesh.positions.resize(static_cast<std::size_t>(vertexCount));
     mesh.normals.resize(static_cast<std::size_t>(vertexCount));
@@ -94,66 +118,134 @@ TriangleMesh marchingCubes(Exec& exec, const SampledFieldView& lattice) {
     exec.download(positions, mesh.positions.data(), mesh.positions.size());
     exec.download(normals, mesh.normals.data(), mesh.normals.size());
     exec.download(indices, mesh.indices.data(), mesh.indices.size());
+    exec.stageEnd("surface download");
     return mesh;
 }
 
-// The field at every lattice sample.
+// The field at every sample of the dense lattice (tests compare the sparse lattice with it).
 template <class Exec, class Field>
 void sampleField(Exec& exec, const Field& field, const SampledFieldView& lattice, float* out) {
-    const Index samples = Index(lattice.nx) * Index(lattice.ny) * Index(lattice.nz);
-    exec.forEach(samples, [=] WEIR_HD(Index i) {
+    exec.forEach(Index(lattice.slotCount()), [=] WEIR_HD(Index i) {
         int x, y, z;
-        lattice.sampleCoords(i, x, y, z);
+        lattice.slotSample(i, x, y, z);
         const Vec3 at = lattice.origin + Vec3(Real(x), Real(y), Real(z)) * lattice.cellSize;
         out[i] = field.valueAt(at);
     });
 }
 
-// Particles to mesh: bins, field, marching cubes.
-template <class Exec>
-TriangleMesh extractSurface(Exec& exec, const HostParticles& particles, const SurfacePlan& plan) {
-    const Index n = Index(particles.size());
-
-    // Particles into bins of at least R / 2 (the dense cell table of grid/dense_grid.h).
-    std::vector<Real4> hostPos(static_cast<std::size_t>(n));
-    for (Index i = 0; i < n; ++i) {
-        hostPos[std::size_t(i)] = {particles.x[i], particles.y[i], particles.z[i], 0};
+// The field's surface over the sparse lattice (sparse_lattice.h): the blocks within the field's
+// reach of the n points flagged, numbered by a prefix sum, the field sampled in the kept blocks
+// only, then marched. Refused (SurfaceError) where the kept samples pass the plan's limit or,
+// without one, half the backend's free memory (`memoryName` names it in the message).
+template <class Exec, class Field>
+TriangleMesh sparseSurface(Exec& exec, const Field& field, const Real4* points, Index n,
+                           const SurfacePlan& plan, const char* memoryName) {
+    exec.stageBegin("surface blocks");
+    const LatticeBlocks blocks = LatticeBlocks::of(plan.dims[0], plan.dims[1], plan.dims[2]);
+    const Index blockCount = Index(blocks.count());  // planSurface keeps it under 2^28
+    ExecBuffer<Exec, std::int32_t> flags(static_cast<std::size_t>(blockCount)),
+        blockEnd(static_cast<std::size_t>(blockCount));
+    std::int32_t* flag = flags.data();
+    exec.forEach(blockCount, [=] WEIR_HD(Index b) { flag[b] = 0; });
+    // The field's kernels reach R from the points; two cells more keep the lowest corner of every
+    // cell and edge with a sample in reach in a kept block, float rounding included.
+    const Real reach = Real(plan.kernelRadius + 2 * plan.cellSize);
+    const Vec3 origin(plan.origin);
+    const Real cellSize = Real(plan.cellSize);
+    exec.forEach(n, [=] WEIR_HD(Index i) {
+        flagBlocksNear(points[i].xyz(), reach, origin, cellSize, blocks, flag);
+    });
+    exec.inclusiveScan(flag, blockEnd.data(), blockCount);
+    const std::int64_t kept = exec.readOne(blockEnd, std::size_t(blockCount - 1));
+    const std::int64_t samples = kept * kSurfaceBlockSamples;
+    const bool limitGiven = plan.maxSamples > 0;
+    const std::int64_t limit =
+        limitGiven
+            ? plan.maxSamples
+            : std::min<std::int64_t>(kMaxSurfaceSamples, std::int64_t(exec.freeMemoryBytes() / 2 /
+                                                                      kBytesPerSurfaceSample));
+    if (samples > limit) {
+        throw SurfaceError(surfaceTooLargeMessage(plan, samples, limit, limitGiven, memoryName));
     }
-    ExecBuffer<Exec, Real4> pos, sortedPos(static_cast<std::size_t>(n));
-    exec.upload(pos, hostPos.data(), hostPos.size());
-    const Vec3d binExtent = plan.particleMax - plan.particleMin;
-    const GridSpec binSpec = makeGridSpec(
-        plan.particleMin, plan.particleMin + binExtent + Vec3d(1, 1, 1) * (1e-6 * plan.binSize),
-        plan.binSize, 1 << 21);
-    DenseGrid<Exec> bins(binSpec, 1);
-    bins.build(exec, pos.data(), n);
+    ExecBuffer<Exec, std::int32_t> blockSlot(static_cast<std::size_t>(blockCount)),
+        keptBlock(static_cast<std::size_t>(std::max<std::int64_t>(kept, 1)));
     {
-        const Index* permutation = bins.permutation();
-        const Real4* unsorted = pos.data();
-        Real4* sorted = sortedPos.data();
-        exec.forEach(n, [=] WEIR_HD(Index k) { sorted[k] = unsorted[permutation[k]]; });
+        const std::int32_t* end = blockEnd.data();
+        std::int32_t* slotOut = blockSlot.data();
+        std::int32_t* keptOut = keptBlock.data();
+        exec.forEach(blockCount, [=] WEIR_HD(Index b) {
+            const bool isKept = flag[b] != 0;
+            slotOut[b] = isKept ? end[b] - 1 : -1;
+            if (isKept) {
+                keptOut[end[b] - 1] = b;
+            }
+        });
     }
-    const ParticleBinsView binned{bins.cells(), sortedPos.data(),
-                                  int(std::ceil(plan.kernelRadius / plan.binSize - 1e-9))};
+    exec.stageEnd("surface blocks");
 
-    const Index samples = Index(plan.sampleCount());
+    exec.stageBegin("surface field");
     ExecBuffer<Exec, float> values(static_cast<std::size_t>(samples));
-    SampledFieldView lattice{values.data(), float(plan.iso),   plan.dims[0],       plan.dims[1],
-                             plan.dims[2],  Vec3(plan.origin), Real(plan.cellSize)};
-    if (plan.field == SurfaceField::Isotropic) {
-        ZhuBridsonField field;
-        field.particles = binned;
-        field.kernelRadius2 = Real(plan.kernelRadius * plan.kernelRadius);
-        field.inverseKernelRadius2 = Real(1 / (plan.kernelRadius * plan.kernelRadius));
-        field.particleRadius = Real(plan.particleRadius);
-        field.inverseSpacing = Real(1 / plan.spacing);
-        field.farValue = Real((plan.kernelRadius - plan.particleRadius) / plan.spacing);
-        sampleField(exec, field, lattice, values.data());
-        return marchingCubes(exec, lattice);
+    SparseFieldView lattice;
+    lattice.values = values.data();
+    lattice.blockSlot = blockSlot.data();
+    lattice.keptBlock = keptBlock.data();
+    lattice.keptCount = kept;
+    lattice.blocks = blocks;
+    lattice.iso = float(plan.iso);
+    lattice.farValue = field.valueFarAway();
+    lattice.nx = plan.dims[0];
+    lattice.ny = plan.dims[1];
+    lattice.nz = plan.dims[2];
+    lattice.origin = origin;
+    lattice.cellSize = cellSize;
+    {
+        float* out = values.data();
+        exec.forEach(Index(samples), [=] WEIR_HD(Index i) {
+            int x, y, z;
+            out[i] = lattice.slotSample(i, x, y, z)
+                         ? field.valueAt(lattice.origin +
+                                         Vec3(Real(x), Real(y), Real(z)) * lattice.cellSize)
+                         : lattice.farValue;
+        });
     }
+    exec.stageEnd("surface field");
+    return marchingCubes(exec, lattice);
+}
 
-    // Anisotropic kernels: each particle's smoothed centre and matrix, then the centres binned
-    // again (they moved by up to lambda R) with their matrices in the new order.
+// The isotropic field of the plan over particles binned on the backend.
+inline ZhuBridsonField isotropicField(const SurfacePlan& plan, const ParticleBinsView& binned) {
+    ZhuBridsonField field;
+    field.particles = binned;
+    field.kernelRadius2 = Real(plan.kernelRadius * plan.kernelRadius);
+    field.inverseKernelRadius2 = Real(1 / (plan.kernelRadius * plan.kernelRadius));
+    field.particleRadius = Real(plan.particleRadius);
+    field.inverseSpacing = Real(1 / plan.spacing);
+    field.farValue = Real((plan.kernelRadius - plan.particleRadius) / plan.spacing);
+    return field;
+}
+
+// Meshes a field by sparseSurface: what withSurfaceField hands the field to. (A functor, not a
+// lambda: nvcc does not let a host lambda's type name a __device__ lambda's template argument.)
+template <class Exec>
+struct SparseSurfaceBuild {
+    Exec* exec;
+    const SurfacePlan* plan;
+    const char* memoryName;
+
+    template <class Field>
+    TriangleMesh operator()(const Field& field, const Real4* points, Index n) const {
+        return sparseSurface(*exec, field, points, n, *plan, memoryName);
+    }
+};
+
+// Yu & Turk's anisotropic kernels: each particle's smoothed centre and matrix, then the centres
+// binned again (they moved by up to lambda R) with their matrices in the new order; their field
+// and centres go to build(field, centres, n).
+template <class Exec, class Build>
+TriangleMesh withAnisotropicField(Exec& exec, const SurfacePlan& plan,
+                                  const ParticleBinsView& binned, const GridSpec& binSpec, Index n,
+                                  const Build& build) {
+    exec.stageBegin("surface anisotropy");
     const double neighbourhood = kAnisotropyNeighbourhood * plan.kernelRadius;
     AnisotropyParams params;
     params.radius2 = Real(neighbourhood * neighbourhood);
@@ -196,8 +288,64 @@ TriangleMesh extractSurface(Exec& exec, const HostParticles& particles, const Su
     field.weightScale = Real(std::pow(plan.spacing, 3) * 315 / (64 * 3.14159265358979323846));
     field.threshold = Real(plan.fractionThreshold);
     field.inverseSlope = Real(1 / plan.fractionSlope);
-    sampleField(exec, field, lattice, values.data());
-    return marchingCubes(exec, lattice);
+    exec.stageEnd("surface anisotropy");
+    return build(field, sortedCentres.data(), n);
+}
+
+// The plan's field over the particles on the backend: bins, then (anisotropic) the kernels;
+// returns build(field, points, n), with points the particles or the kernels' centres, from which
+// the field reaches R.
+template <class Exec, class Build>
+TriangleMesh withSurfaceField(Exec& exec, const HostParticles& particles, const SurfacePlan& plan,
+                              const Build& build) {
+    const Index n = Index(particles.size());
+
+    exec.stageBegin("surface upload");
+    std::vector<Real4> hostPos(static_cast<std::size_t>(n));
+    const Real* px = particles.x.data();
+    const Real* py = particles.y.data();
+    const Real* pz = particles.z.data();
+    CpuExec().forEach(n, [&](Index i) { hostPos[std::size_t(i)] = {px[i], py[i], pz[i], 0}; });
+    ExecBuffer<Exec, Real4> pos, sortedPos(static_cast<std::size_t>(n));
+    exec.upload(pos, hostPos.data(), hostPos.size());
+    exec.stageEnd("surface upload");
+
+    // Particles into bins of at least R / 2 (the dense cell table of grid/dense_grid.h).
+    exec.stageBegin("surface bins");
+    const Vec3d binExtent = plan.particleMax - plan.particleMin;
+    const GridSpec binSpec = makeGridSpec(
+        plan.particleMin, plan.particleMin + binExtent + Vec3d(1, 1, 1) * (1e-6 * plan.binSize),
+        plan.binSize, 1 << 21);
+    DenseGrid<Exec> bins(binSpec, 1);
+    bins.build(exec, pos.data(), n);
+    {
+        const Index* permutation = bins.permutation();
+        const Real4* unsorted = pos.data();
+        Real4* sorted = sortedPos.data();
+        exec.forEach(n, [=] WEIR_HD(Index k) { sorted[k] = unsorted[permutation[k]]; });
+    }
+    const ParticleBinsView binned{bins.cells(), sortedPos.data(),
+                                  int(std::ceil(plan.kernelRadius / plan.binSize - 1e-9))};
+    exec.stageEnd("surface bins");
+
+    if (plan.field == SurfaceField::Isotropic) {
+        return build(isotropicField(plan, binned), sortedPos.data(), n);
+    }
+    return withAnisotropicField(exec, plan, binned, binSpec, n, build);
+}
+
+// Particles to mesh: bins, (anisotropic kernels), blocks, field, marching cubes; each stage's
+// time into `stages` where given. `memoryName` names the backend's memory in messages.
+template <class Exec>
+TriangleMesh extractSurface(Exec& exec, const HostParticles& particles, const SurfacePlan& plan,
+                            const char* memoryName, StageTimes* stages = nullptr) {
+    exec.timing = stages != nullptr;
+    TriangleMesh mesh =
+        withSurfaceField(exec, particles, plan, SparseSurfaceBuild<Exec>{&exec, &plan, memoryName});
+    if (stages != nullptr) {
+        exec.collectTimes(*stages);
+    }
+    return mesh;
 }
 
 }  // namespace weir
