@@ -118,21 +118,32 @@ SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& op
     if (n == 0) {
         throw SurfaceError("there are no particles to build a surface from");
     }
-    SurfacePlan plan;
-    plan.particleMin = Vec3d(particles.x[0], particles.y[0], particles.z[0]);
-    plan.particleMax = plan.particleMin;
-    for (std::size_t i = 0; i < n; ++i) {
-        const Vec3d p(particles.x[i], particles.y[i], particles.z[i]);
+    // Bounds and the first non-finite position, on all cores.
+    double low[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, high[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    std::int64_t firstBad = std::int64_t(n);
+    const Real* coords[3] = {particles.x.data(), particles.y.data(), particles.z.data()};
+#pragma omp parallel for schedule(static) reduction(min                                \
+                                                    : low[:3], firstBad) reduction(max \
+                                                                                   : high[:3])
+    for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
         for (int a = 0; a < 3; ++a) {
-            if (!std::isfinite(p[a])) {
-                throw SurfaceError("particle " + std::to_string(i) + " has position " + text(p.x) +
-                                   " " + text(p.y) + " " + text(p.z) +
-                                   ", every coordinate must be finite");
+            const double value = coords[a][i];
+            if (!std::isfinite(value)) {
+                firstBad = std::min(firstBad, i);
             }
-            plan.particleMin[a] = std::min(plan.particleMin[a], p[a]);
-            plan.particleMax[a] = std::max(plan.particleMax[a], p[a]);
+            low[a] = std::min(low[a], value);
+            high[a] = std::max(high[a], value);
         }
     }
+    if (firstBad < std::int64_t(n)) {
+        const std::size_t i = std::size_t(firstBad);
+        throw SurfaceError("particle " + std::to_string(i) + " has position " +
+                           text(particles.x[i]) + " " + text(particles.y[i]) + " " +
+                           text(particles.z[i]) + ", every coordinate must be finite");
+    }
+    SurfacePlan plan;
+    plan.particleMin = Vec3d(low[0], low[1], low[2]);
+    plan.particleMax = Vec3d(high[0], high[1], high[2]);
 
     plan.spacing = options.spacing;
     if (plan.spacing == 0) {
