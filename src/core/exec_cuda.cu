@@ -1,9 +1,14 @@
 // CUDA primitives: CUB radix sort and scan with persistent scratch, event timing, device info.
+#include <omp.h>
+
+#include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_reduce.cuh>
 #include <cub/device/device_scan.cuh>
 #include <cuda/functional>
+#include <mutex>
 #include <sstream>
 #include <string>
 
@@ -125,6 +130,132 @@ void CudaExec::inclusiveMaxScan(Index* data, Index n) {
     bytes = scanTemp_.size();
     WEIR_CUDA_CHECK(cub::DeviceScan::InclusiveScan(scanTemp_.data(), bytes, data, data,
                                                    cuda::maximum<>{}, n, stream_));
+}
+
+namespace {
+
+// Copies of at least kStagedCopyBytes go through the staging chunks.
+constexpr std::size_t kStagingChunkBytes = std::size_t(32) << 20;
+constexpr std::size_t kStagedCopyBytes = std::size_t(4) << 20;
+
+// Two pinned chunks and their events, allocated on first use on one device and kept for the
+// process (freed by the driver at exit: a static destructor could run after the CUDA runtime's
+// own teardown). One staged copy at a time.
+struct StagingChunks {
+    std::mutex mutex;
+    bool tried = false;
+    int device = -1;
+    void* chunk[2] = {nullptr, nullptr};
+    cudaEvent_t done[2] = {nullptr, nullptr};
+
+    // Whether the chunks exist for the current device (a failed allocation leaves them out, and
+    // copies go direct).
+    bool readyFor(int currentDevice) {
+        if (!tried) {
+            tried = true;
+            device = currentDevice;
+            for (int k = 0; k < 2; ++k) {
+                if (cudaHostAlloc(&chunk[k], kStagingChunkBytes, cudaHostAllocPortable) !=
+                        cudaSuccess ||
+                    cudaEventCreateWithFlags(&done[k], cudaEventDisableTiming) != cudaSuccess) {
+                    cudaGetLastError();  // the failure is handled: direct copies
+                    chunk[0] = chunk[1] = nullptr;
+                    return false;
+                }
+            }
+        }
+        return chunk[0] != nullptr && chunk[1] != nullptr && device == currentDevice;
+    }
+};
+
+StagingChunks& stagingChunks() {
+    static StagingChunks* chunks = new StagingChunks;  // never destroyed, see above
+    return *chunks;
+}
+
+// memcpy on all cores, a megabyte or more per thread.
+void copyOnCores(void* dst, const void* src, std::size_t bytes) {
+    const int parts = int(std::max<std::size_t>(
+        1, std::min<std::size_t>(std::size_t(omp_get_max_threads()), bytes >> 20)));
+#pragma omp parallel for num_threads(parts) schedule(static)
+    for (int part = 0; part < parts; ++part) {
+        const std::size_t begin = bytes * std::size_t(part) / std::size_t(parts);
+        const std::size_t end = bytes * std::size_t(part + 1) / std::size_t(parts);
+        std::memcpy(static_cast<char*>(dst) + begin, static_cast<const char*>(src) + begin,
+                    end - begin);
+    }
+}
+
+}  // namespace
+
+void CudaExec::copyToDevice(void* deviceDst, const void* hostSrc, std::size_t bytes) {
+    if (bytes == 0) {
+        return;
+    }
+    int device = 0;
+    WEIR_CUDA_CHECK(cudaGetDevice(&device));
+    StagingChunks& staging = stagingChunks();
+    std::unique_lock<std::mutex> lock(staging.mutex, std::defer_lock);
+    if (bytes >= kStagedCopyBytes) {
+        lock.lock();
+    }
+    if (!lock.owns_lock() || !staging.readyFor(device)) {
+        WEIR_CUDA_CHECK(
+            cudaMemcpyAsync(deviceDst, hostSrc, bytes, cudaMemcpyHostToDevice, stream_));
+        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+        return;
+    }
+    for (std::size_t offset = 0, k = 0; offset < bytes; offset += kStagingChunkBytes, ++k) {
+        const std::size_t slot = k & 1;
+        const std::size_t length = std::min(kStagingChunkBytes, bytes - offset);
+        // The DMA that last read this chunk is over before the host writes it again.
+        WEIR_CUDA_CHECK(cudaEventSynchronize(staging.done[slot]));
+        copyOnCores(staging.chunk[slot], static_cast<const char*>(hostSrc) + offset, length);
+        WEIR_CUDA_CHECK(cudaMemcpyAsync(static_cast<char*>(deviceDst) + offset, staging.chunk[slot],
+                                        length, cudaMemcpyHostToDevice, stream_));
+        WEIR_CUDA_CHECK(cudaEventRecord(staging.done[slot], stream_));
+    }
+    WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+}
+
+void CudaExec::copyToHost(void* hostDst, const void* deviceSrc, std::size_t bytes) {
+    if (bytes == 0) {
+        return;
+    }
+    int device = 0;
+    WEIR_CUDA_CHECK(cudaGetDevice(&device));
+    StagingChunks& staging = stagingChunks();
+    std::unique_lock<std::mutex> lock(staging.mutex, std::defer_lock);
+    if (bytes >= kStagedCopyBytes) {
+        lock.lock();
+    }
+    if (!lock.owns_lock() || !staging.readyFor(device)) {
+        WEIR_CUDA_CHECK(
+            cudaMemcpyAsync(hostDst, deviceSrc, bytes, cudaMemcpyDeviceToHost, stream_));
+        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+        return;
+    }
+    const std::size_t chunks = (bytes + kStagingChunkBytes - 1) / kStagingChunkBytes;
+    const auto startChunk = [&](std::size_t k) {
+        const std::size_t offset = k * kStagingChunkBytes;
+        const std::size_t length = std::min(kStagingChunkBytes, bytes - offset);
+        WEIR_CUDA_CHECK(cudaMemcpyAsync(staging.chunk[k & 1],
+                                        static_cast<const char*>(deviceSrc) + offset, length,
+                                        cudaMemcpyDeviceToHost, stream_));
+        WEIR_CUDA_CHECK(cudaEventRecord(staging.done[k & 1], stream_));
+    };
+    startChunk(0);
+    for (std::size_t k = 0; k < chunks; ++k) {
+        // The next chunk's DMA runs while the host copies this one out (its slot's last host
+        // copy finished in the iteration before).
+        if (k + 1 < chunks) {
+            startChunk(k + 1);
+        }
+        WEIR_CUDA_CHECK(cudaEventSynchronize(staging.done[k & 1]));
+        const std::size_t offset = k * kStagingChunkBytes;
+        copyOnCores(static_cast<char*>(hostDst) + offset, staging.chunk[k & 1],
+                    std::min(kStagingChunkBytes, bytes - offset));
+    }
 }
 
 void CudaExec::download1(void* dst, const void* src, std::size_t bytes) {

@@ -180,39 +180,31 @@ class CudaExec {
     void max(const float* in, Index n, float* out);
     void max(const double* in, Index n, double* out);
 
+    // Copies between host memory and a buffer, waiting for them (copyToDevice, copyToHost).
     template <class T>
     void upload(Buffer<T>& dst, const T* src, std::size_t n) {
         dst.resize(n);
-        WEIR_CUDA_CHECK(
-            cudaMemcpyAsync(dst.data(), src, n * sizeof(T), cudaMemcpyHostToDevice, stream_));
-        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+        copyToDevice(dst.data(), src, n * sizeof(T));
     }
     template <class T>
     void download(const Buffer<T>& src, T* dst, std::size_t n) {
-        WEIR_CUDA_CHECK(
-            cudaMemcpyAsync(dst, src.data(), n * sizeof(T), cudaMemcpyDeviceToHost, stream_));
-        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+        copyToHost(dst, src.data(), n * sizeof(T));
     }
     // n elements between the host and a buffer from element `offset` on (the buffer keeps its
     // size).
     template <class T>
     void uploadAt(Buffer<T>& dst, std::size_t offset, const T* src, std::size_t n) {
-        if (n == 0) {
-            return;
-        }
-        WEIR_CUDA_CHECK(cudaMemcpyAsync(dst.data() + offset, src, n * sizeof(T),
-                                        cudaMemcpyHostToDevice, stream_));
-        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+        copyToDevice(dst.data() + offset, src, n * sizeof(T));
     }
     template <class T>
     void downloadFrom(const Buffer<T>& src, std::size_t offset, T* dst, std::size_t n) {
-        if (n == 0) {
-            return;
-        }
-        WEIR_CUDA_CHECK(cudaMemcpyAsync(dst, src.data() + offset, n * sizeof(T),
-                                        cudaMemcpyDeviceToHost, stream_));
-        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+        copyToHost(dst, src.data() + offset, n * sizeof(T));
     }
+    // Blocking copies from (to) pageable host memory: large ones go through two pinned staging
+    // chunks shared by the process, the host's copy of one chunk (on all cores) overlapping the
+    // DMA of the other, since a pageable cudaMemcpy runs at a few GB/s.
+    void copyToDevice(void* deviceDst, const void* hostSrc, std::size_t bytes);
+    void copyToHost(void* hostDst, const void* deviceSrc, std::size_t bytes);
     // The same without waiting: the copy is done once synchronize() returns (the host memory
     // must stay put until then). A distributed step queues several and waits once.
     template <class T>

@@ -41,6 +41,17 @@ struct SampledFieldView {
     }
 };
 
+// A sample value within `margin` of iso moved out to iso -/+ margin, on the side it was on: the
+// signs, and so the mesh's connectivity, stay as they were, but no cut edge's vertex comes closer
+// to a sample than about margin over the field's change along the edge. Vertices near samples
+// are what make marching cubes' slivers (needles and caps around the sample).
+WEIR_HD inline float snappedOffIso(float value, float iso, float margin) {
+    if (value < iso) {
+        return value > iso - margin ? iso - margin : value;
+    }
+    return value < iso + margin ? iso + margin : value;
+}
+
 WEIR_HD inline int bitCount3(int mask) {
     return (mask & 1) + ((mask >> 1) & 1) + ((mask >> 2) & 1);
 }

@@ -42,6 +42,27 @@ TriangleShape shapeOf(const Vec3d p[3]) {
     return s;
 }
 
+// Whether the triangle has an edge under minEdge or an angle under kSliverAngleDegrees: shapeOf's
+// test without its arc cosines (an angle is under the bound where its cosine is above the
+// bound's), for the pass over every triangle.
+bool isSliver(const Vec3d p[3], double minEdge) {
+    static const double cosineBound = std::cos(kSliverAngleDegrees * 3.14159265358979323846 / 180);
+    const Vec3d e[3] = {p[1] - p[0], p[2] - p[1], p[0] - p[2]};
+    const double length2[3] = {lengthSquared(e[0]), lengthSquared(e[1]), lengthSquared(e[2])};
+    const double minEdge2 = minEdge * minEdge;
+    if (length2[0] < minEdge2 || length2[1] < minEdge2 || length2[2] < minEdge2) {
+        return true;
+    }
+    for (int k = 0; k < 3; ++k) {  // the angle at corner k, between -e[k + 2] and e[k]
+        const double cosine = -dot(e[(k + 2) % 3], e[k]);
+        if (cosine > 0 &&
+            cosine * cosine > cosineBound * cosineBound * length2[k] * length2[(k + 2) % 3]) {
+            return true;
+        }
+    }
+    return false;
+}
+
 class SliverCleaner {
    public:
     SliverCleaner(TriangleMesh& mesh, double cellSize)
@@ -68,12 +89,16 @@ class SliverCleaner {
         if (!alive_[t]) {
             return false;
         }
-        const TriangleShape s = shape(t);
-        return s.minEdge() < minEdge_ || s.minAngle() < kSliverAngleDegrees;
+        const std::uint32_t* c = corners(t);
+        const Vec3d p[3] = {position(c[0]), position(c[1]), position(c[2])};
+        return isSliver(p, minEdge_);
     }
 
     void fix(const std::vector<std::uint32_t>& bad, SliverCleanupReport& report) {
         std::deque<std::uint32_t> queue(bad.begin(), bad.end());
+        // The triangles that can be bad at the end: the bad ones and every one an operation
+        // reshaped (a collapse touches all triangles of the merged vertex, a flip its two).
+        std::vector<std::uint32_t> candidates(bad.begin(), bad.end());
         std::size_t budget = 8 * bad.size() + 64;  // every operation removes or reshapes a sliver
         while (!queue.empty() && budget > 0) {
             const std::uint32_t t = queue.front();
@@ -84,6 +109,7 @@ class SliverCleaner {
             --budget;
             std::vector<std::uint32_t> touched;
             if (fixTriangle(t, report, touched)) {
+                candidates.insert(candidates.end(), touched.begin(), touched.end());
                 for (std::uint32_t u : touched) {
                     if (isBad(u)) {
                         queue.push_back(u);
@@ -94,13 +120,15 @@ class SliverCleaner {
         // What no operation could fix is a speck: a closed piece of a few triangles around one
         // lattice sample barely past the iso-value (a tetrahedron a hundredth of a cell across,
         // where every collapse would break the link condition). It goes, whole.
-        for (std::size_t t = 0; t < triangles_; ++t) {
-            if (isBad(std::uint32_t(t)) && removeSpeck(std::uint32_t(t))) {
+        std::sort(candidates.begin(), candidates.end());
+        candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+        for (std::uint32_t t : candidates) {
+            if (isBad(t) && removeSpeck(t)) {
                 ++report.specks;
             }
         }
-        for (std::size_t t = 0; t < triangles_; ++t) {
-            report.left += isBad(std::uint32_t(t)) ? 1 : 0;
+        for (std::uint32_t t : candidates) {
+            report.left += isBad(t) ? 1 : 0;
         }
     }
 
@@ -422,8 +450,7 @@ SliverCleanupReport removeSlivers(TriangleMesh& mesh, double cellSize) {
         const std::uint32_t* v = &mesh.indices[3 * std::size_t(t)];
         const Vec3d p[3] = {Vec3d(mesh.positions[v[0]]), Vec3d(mesh.positions[v[1]]),
                             Vec3d(mesh.positions[v[2]])};
-        const TriangleShape s = shapeOf(p);
-        bad[std::size_t(t)] = s.minEdge() < minEdge || s.minAngle() < kSliverAngleDegrees;
+        bad[std::size_t(t)] = isSliver(p, minEdge);
     }
     std::vector<std::uint32_t> badList;
     for (std::size_t t = 0; t < triangles; ++t) {

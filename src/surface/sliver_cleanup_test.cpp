@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <random>
 #include <vector>
 
 #include "scene/setup.h"
@@ -108,6 +110,55 @@ TEST(SliverCleanup, DamBreakFramesHaveNoSlivers) {
     }
     EXPECT_EQ(meshes, 4u);
     EXPECT_GT(slivers, 0u) << "no slivers to remove: the test checks nothing";
+}
+
+// Snapping the field off the iso-value (snappedOffIso) keeps marching cubes' vertices off the
+// lattice's samples: the same triangles between the same edges, vertices moved a little, and
+// (isotropic field) none of the slivers that vertices near samples make.
+TEST(SliverCleanup, SnappingOffTheIsoValueLeavesTheMeshAndRemovesItsSlivers) {
+    const double d = 0.01;
+    HostParticles ball = testing::latticeBall(Vec3d(0, 0, 0), 0.09, d);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> jitter(-0.2 * d, 0.2 * d);
+    for (std::size_t i = 0; i < ball.size(); ++i) {
+        ball.x[i] += Real(jitter(rng));
+        ball.y[i] += Real(jitter(rng));
+        ball.z[i] += Real(jitter(rng));
+    }
+    SurfaceOptions unsnapped;
+    unsnapped.spacing = d;
+    unsnapped.removeSlivers = false;
+    unsnapped.snapFraction = 0;
+    SurfaceOptions snapped = unsnapped;
+    snapped.snapFraction = kSurfaceSnapFraction;
+    SurfacePlan plan;
+    const TriangleMesh a = reconstructSurface(Backend::Cpu, ball, unsnapped, &plan);
+    const TriangleMesh b = reconstructSurface(Backend::Cpu, ball, snapped);
+    ASSERT_EQ(a.indices, b.indices);
+    ASSERT_EQ(a.positions.size(), b.positions.size());
+    double largest = 0, sum = 0;
+    for (std::size_t v = 0; v < a.positions.size(); ++v) {
+        const double moved = length(Vec3d(a.positions[v]) - Vec3d(b.positions[v]));
+        largest = std::max(largest, moved);
+        sum += moved;
+    }
+    const double mean = sum / double(a.positions.size());
+    std::printf("%zu vertices moved by %.4f cell on average, %.4f at most\n", a.positions.size(),
+                mean / plan.cellSize, largest / plan.cellSize);
+    // A vertex moves along its edge, by at most half a cell (where both of the edge's ends lie
+    // within the margin of iso, it goes to the middle); on average by much less.
+    EXPECT_LT(mean, 0.02 * plan.cellSize);
+    EXPECT_LE(largest, 0.5001 * plan.cellSize);
+    const double minEdge = kSliverEdgeFraction * plan.cellSize;
+    const MeshQuality before = measureQuality(a, minEdge, kSliverAngleDegrees);
+    const MeshQuality after = measureQuality(b, minEdge, kSliverAngleDegrees);
+    std::printf(
+        "unsnapped: %zu short edges, %zu small angles; snapped: %zu, %zu (min angle "
+        "%.2f deg)\n",
+        before.shortEdges, before.smallAngles, after.shortEdges, after.smallAngles,
+        after.minAngleDegrees);
+    EXPECT_GT(before.shortEdges + before.smallAngles, 0u) << "no slivers: the test checks nothing";
+    EXPECT_EQ(after.shortEdges + after.smallAngles, 0u);
 }
 
 }  // namespace

@@ -34,7 +34,7 @@ struct DenseSurfaceBuild {
         const SampledFieldView lattice{values.data(),       float(plan->iso), plan->dims[0],
                                        plan->dims[1],       plan->dims[2],    Vec3(plan->origin),
                                        Real(plan->cellSize)};
-        sampleField(*exec, field, lattice, values.data());
+        sampleField(*exec, field, lattice, values.data(), float(plan->snapMargin));
         return marchingCubes(*exec, lattice);
     }
 };

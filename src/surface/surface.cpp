@@ -106,6 +106,10 @@ double estimateParticleSpacing(const HostParticles& particles) {
 SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& options) {
     requireNonNegative(options.spacing, "spacing", "an estimate from the particles");
     requireNonNegative(options.cellSize, "cell size", "half the particle spacing");
+    if (!(options.snapFraction >= 0 && options.snapFraction <= 0.25)) {
+        throw std::invalid_argument("snap fraction is " + text(options.snapFraction) +
+                                    ", must be in [0, 0.25] cells");
+    }
     if (!(options.kernelRadiusRatio >= 1 && options.kernelRadiusRatio <= 5)) {
         throw std::invalid_argument("kernel radius ratio is " + text(options.kernelRadiusRatio) +
                                     ", must be in [1, 5] particle spacings");
@@ -183,6 +187,7 @@ SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& op
     const double margin = plan.kernelRadius + 2 * plan.cellSize;
     plan.origin = plan.particleMin - Vec3d(margin, margin, margin);
     plan.maxSamples = options.maxSamples;
+    plan.snapMargin = options.snapFraction * plan.cellSize / plan.spacing;
     double samples = 1, blocks = 1;
     for (int a = 0; a < 3; ++a) {
         const double extent = plan.particleMax[a] - plan.particleMin[a] + 2 * margin;

@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "core/exec_cpu.h"
 #include "core/stage_timer.h"
 #include "grid/cell_id.h"
 #include "grid/dense_grid.h"
@@ -122,14 +121,16 @@ TriangleMesh marchingCubes(Exec& exec, const Lattice& lattice) {
     return mesh;
 }
 
-// The field at every sample of the dense lattice (tests compare the sparse lattice with it).
+// The field at every sample of the dense lattice (tests compare the sparse lattice with it),
+// snapped off the iso-value by `snap` (snappedOffIso).
 template <class Exec, class Field>
-void sampleField(Exec& exec, const Field& field, const SampledFieldView& lattice, float* out) {
+void sampleField(Exec& exec, const Field& field, const SampledFieldView& lattice, float* out,
+                 float snap) {
     exec.forEach(Index(lattice.slotCount()), [=] WEIR_HD(Index i) {
         int x, y, z;
         lattice.slotSample(i, x, y, z);
         const Vec3 at = lattice.origin + Vec3(Real(x), Real(y), Real(z)) * lattice.cellSize;
-        out[i] = field.valueAt(at);
+        out[i] = snappedOffIso(field.valueAt(at), lattice.iso, snap);
     });
 }
 
@@ -200,12 +201,15 @@ TriangleMesh sparseSurface(Exec& exec, const Field& field, const Real4* points, 
     lattice.cellSize = cellSize;
     {
         float* out = values.data();
+        const float snap = float(plan.snapMargin);
         exec.forEach(Index(samples), [=] WEIR_HD(Index i) {
             int x, y, z;
-            out[i] = lattice.slotSample(i, x, y, z)
-                         ? field.valueAt(lattice.origin +
-                                         Vec3(Real(x), Real(y), Real(z)) * lattice.cellSize)
-                         : lattice.farValue;
+            out[i] =
+                lattice.slotSample(i, x, y, z)
+                    ? snappedOffIso(field.valueAt(lattice.origin + Vec3(Real(x), Real(y), Real(z)) *
+                                                                       lattice.cellSize),
+                                    lattice.iso, snap)
+                    : lattice.farValue;
         });
     }
     exec.stageEnd("surface field");
@@ -301,13 +305,19 @@ TriangleMesh withSurfaceField(Exec& exec, const HostParticles& particles, const 
     const Index n = Index(particles.size());
 
     exec.stageBegin("surface upload");
-    std::vector<Real4> hostPos(static_cast<std::size_t>(n));
-    const Real* px = particles.x.data();
-    const Real* py = particles.y.data();
-    const Real* pz = particles.z.data();
-    CpuExec().forEach(n, [&](Index i) { hostPos[std::size_t(i)] = {px[i], py[i], pz[i], 0}; });
-    ExecBuffer<Exec, Real4> pos, sortedPos(static_cast<std::size_t>(n));
-    exec.upload(pos, hostPos.data(), hostPos.size());
+    ExecBuffer<Exec, Real4> pos(static_cast<std::size_t>(n)),
+        sortedPos(static_cast<std::size_t>(n));
+    {
+        ExecBuffer<Exec, Real> x, y, z;
+        exec.upload(x, particles.x.data(), particles.x.size());
+        exec.upload(y, particles.y.data(), particles.y.size());
+        exec.upload(z, particles.z.data(), particles.z.size());
+        const Real* px = x.data();
+        const Real* py = y.data();
+        const Real* pz = z.data();
+        Real4* out = pos.data();
+        exec.forEach(n, [=] WEIR_HD(Index i) { out[i] = {px[i], py[i], pz[i], Real(0)}; });
+    }
     exec.stageEnd("surface upload");
 
     // Particles into bins of at least R / 2 (the dense cell table of grid/dense_grid.h).

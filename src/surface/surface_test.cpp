@@ -208,6 +208,9 @@ TEST(Surface, BadInputIsRefusedWithTheValue) {
     SurfaceOptions iso;
     iso.iso = 5;
     EXPECT_THROW(planSurface(box, iso), std::invalid_argument);
+    SurfaceOptions snap;
+    snap.snapFraction = 0.3;
+    EXPECT_THROW(planSurface(box, snap), std::invalid_argument);
     SurfaceOptions negative;
     negative.cellSize = -1;
     EXPECT_THROW(planSurface(box, negative), std::invalid_argument);
