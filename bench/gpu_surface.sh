@@ -3,7 +3,8 @@
 # (issue 17, part 2): build, the GPU tests of the surface and the step, weir_surface_bench on
 # synthetic frames (1M, 10M, 1e8 particles) and on real dam-break frames, frame output timed
 # against frames off, the GPU reference step in the same call, throttling checked before and
-# after. Results under $OUT (or ./gpu-out). PARTS picks what runs (default all of
+# after. Results under $OUT (or ./gpu-out; the device tool brings back a few files only, so
+# send OUT=/tmp/x and tar it into the tool's $OUT). PARTS picks what runs (default all of
 # "build test synthetic real frames reference").
 # Usage: PARTS="build synthetic" bash bench/gpu_surface.sh [reference-dir]
 set -uo pipefail
@@ -37,15 +38,12 @@ surface() {  # name, then weir_surface_bench arguments
 }
 if has synthetic; then
     surface iso-1M --particles 1000000 --backend cuda --repeats 5
-    surface iso-1M-raw --particles 1000000 --backend cuda --repeats 5 --keep-slivers
     surface aniso-1M --particles 1000000 --backend cuda --surface-field anisotropic --repeats 5
+    surface iso-10M --particles 10000000 --backend cuda --repeats 5
+    surface aniso-10M --particles 10000000 --backend cuda --surface-field anisotropic --repeats 5
+    surface iso-100M --particles 100000000 --backend cuda --repeats 3
+    surface aniso-100M --particles 100000000 --backend cuda --surface-field anisotropic --repeats 3
     surface cpu-iso-1M --particles 1000000 --backend cpu --repeats 3
-    surface iso-10M --particles 10000000 --backend cuda --repeats 3
-    surface iso-10M-raw --particles 10000000 --backend cuda --repeats 3 --keep-slivers
-    surface aniso-10M-raw --particles 10000000 --backend cuda --surface-field anisotropic \
-        --repeats 3 --keep-slivers
-    surface iso-100M-raw --particles 100000000 --backend cuda --repeats 2 --keep-slivers
-    nvidia-smi --query-gpu=memory.used,memory.total --format=csv >"$out/memory-after-100M.txt"
 fi
 if has real; then
     # A dam break just after the front hits the far wall (frame 12 at 30 frames per second).
@@ -58,12 +56,14 @@ if has real; then
     ls -la /tmp/db1M | head -20 >"$out/run-1M-files.txt"
 fi
 if has frames; then
-    OUTDIR=/tmp/fo timeout 300 bash bench/frame_output.sh build-gpu/weir 3 dam_break \
-        --particles 1000000 --frames 30 2>&1 | tee "$out/frame-output-vtu.txt"
-    OUTDIR=/tmp/fo timeout 120 bash bench/frame_output.sh build-gpu/weir 1 dam_break \
-        --particles 1000000 --frames 30 --format ply 2>&1 | tee "$out/frame-output-ply.txt"
-    OUTDIR=/tmp/fo timeout 120 bash bench/frame_output.sh build-gpu/weir 1 dam_break \
-        --particles 1000000 --frames 30 --format csv 2>&1 | tee "$out/frame-output-csv.txt"
+    OUTDIR=/tmp/fo timeout 300 bash bench/frame_output.sh build-gpu/weir "${FRAME_REPEATS:-3}" \
+        dam_break --particles 1000000 --frames 30 2>&1 | tee "$out/frame-output-vtu.txt"
+    if [ -z "${FRAME_REPEATS:-}" ]; then
+        OUTDIR=/tmp/fo timeout 120 bash bench/frame_output.sh build-gpu/weir 1 dam_break \
+            --particles 1000000 --frames 30 --format ply 2>&1 | tee "$out/frame-output-ply.txt"
+        OUTDIR=/tmp/fo timeout 120 bash bench/frame_output.sh build-gpu/weir 1 dam_break \
+            --particles 1000000 --frames 30 --format csv 2>&1 | tee "$out/frame-output-csv.txt"
+    fi
 fi
 if has reference && [ -d "$reference" ]; then
     bash "$reference/run.sh" 1000000 10000000 2>&1 | tee "$out/reference.txt"
