@@ -102,6 +102,7 @@ int run(int argc, char** argv) {
     double spacing = 0;
     int repeats = 5;
     bool keepSlivers = false;
+    double snapFraction = kSurfaceSnapFraction;
     app.add_option("--frame", frame, "a frame file (vtu, ply, csv, ...); default: synthetic");
     app.add_option("--particles", particleCount, "particles of the synthetic frame")
         ->check(CLI::Range(std::int64_t(1000), std::int64_t(2000000000)));
@@ -112,6 +113,8 @@ int run(int argc, char** argv) {
     app.add_option("--repeats", repeats, "timed repeats after one warm-up")
         ->check(CLI::Range(1, 1000));
     app.add_flag("--keep-slivers", keepSlivers, "skip the sliver cleanup");
+    app.add_option("--snap", snapFraction,
+                   "keep vertices this fraction of a cell off the samples (0: no snapping)");
     app.add_option("--json", jsonPath, "write the results here as JSON");
     CLI11_PARSE(app, argc, argv);
 
@@ -131,6 +134,7 @@ int run(int argc, char** argv) {
     options.spacing = spacing;
     options.field = parseSurfaceField(fieldName);
     options.removeSlivers = !keepSlivers;
+    options.snapFraction = snapFraction;
     std::cerr << "weir_surface_bench: " << particles.size() << " particles ("
               << (frame.empty() ? "synthetic" : frame) << ", " << loadSeconds << " s to load), "
               << backendName << ", " << fieldName << " field\n";
@@ -174,6 +178,7 @@ int run(int argc, char** argv) {
     out["input"] = frame.empty() ? "synthetic" : frame;
     out["backend"] = backendName;
     out["field"] = fieldName;
+    out["snap_fraction"] = snapFraction;
     out["spacing_m"] = plan.spacing;
     out["cell_size_m"] = plan.cellSize;
     out["box_samples"] = plan.sampleCount();

@@ -2,6 +2,8 @@
 // flips over a vertex-to-triangle table.
 #include "surface/sliver_cleanup.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -63,25 +65,88 @@ bool isSliver(const Vec3d p[3], double minEdge) {
     return false;
 }
 
+// Rings of vertices around the bad triangles whose triangle lists the cleaner builds: the cleaner
+// works on the vertices of the first kKnownRings rings (their lists complete) and leaves alone
+// any operation that would read or change a vertex beyond them, so that its setup costs a few
+// parallel passes over the mesh, not a vertex-to-triangle table of the whole mesh.
+constexpr int kKnownRings = 3;
+
 class SliverCleaner {
    public:
     SliverCleaner(TriangleMesh& mesh, double cellSize)
         : mesh_(mesh),
           minEdge_(kSliverEdgeFraction * cellSize),
           triangles_(mesh.triangleCount()),
-          alive_(triangles_, 1) {
-        // Vertex to triangles, as offsets into one array; changed vertices move to a map.
-        offsets_.assign(mesh.vertexCount() + 1, 0);
-        for (std::uint32_t v : mesh.indices) {
-            ++offsets_[v + 1];
+          alive_(triangles_, 1) {}
+
+    // Builds the triangle lists of the vertices within kKnownRings rings of the bad triangles
+    // (ring 0: their corners; ring r + 1: the other corners of the triangles at ring r).
+    void learnAround(const std::vector<std::uint32_t>& bad) {
+        lists_.clear();
+        std::vector<std::uint8_t> ring(mesh_.vertexCount(), 0);  // 0: none, else ring + 1
+        for (std::uint32_t t : bad) {
+            for (int k = 0; k < 3; ++k) {
+                ring[corners(t)[k]] = 1;
+            }
         }
-        for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
-            offsets_[v + 1] += offsets_[v];
+        const std::int64_t triangles = std::int64_t(triangles_);
+        std::uint8_t* rings = ring.data();
+        const std::uint32_t* indices = mesh_.indices.data();
+        for (int r = 1; r < kKnownRings; ++r) {
+            // A triangle with a corner in an earlier ring brings its other corners into ring r;
+            // marks made in this pass (r + 1) do not count in it, so the result is the same
+            // whatever the threads' order.
+#pragma omp parallel for schedule(static)
+            for (std::int64_t t = 0; t < triangles; ++t) {
+                if (!alive_[std::size_t(t)]) {
+                    continue;
+                }
+                const std::uint32_t* c = indices + 3 * t;
+                bool near = false;
+                for (int k = 0; k < 3; ++k) {
+                    const std::uint8_t m = __atomic_load_n(&rings[c[k]], __ATOMIC_RELAXED);
+                    near = near || (m != 0 && m <= r);
+                }
+                if (near) {
+                    for (int k = 0; k < 3; ++k) {
+                        if (__atomic_load_n(&rings[c[k]], __ATOMIC_RELAXED) == 0) {
+                            __atomic_store_n(&rings[c[k]], std::uint8_t(r + 1), __ATOMIC_RELAXED);
+                        }
+                    }
+                }
+            }
         }
-        incident_.resize(mesh.indices.size());
-        std::vector<std::size_t> fill(offsets_.begin(), offsets_.end() - 1);
-        for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
-            incident_[fill[mesh.indices[i]]++] = std::uint32_t(i / 3);
+        // Each known vertex's triangles, in triangle order.
+        std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(
+            static_cast<std::size_t>(omp_get_max_threads()));
+#pragma omp parallel
+        {
+            auto& mine = found[std::size_t(omp_get_thread_num())];
+#pragma omp for schedule(static)
+            for (std::int64_t t = 0; t < triangles; ++t) {
+                if (!alive_[std::size_t(t)]) {
+                    continue;
+                }
+                for (int k = 0; k < 3; ++k) {
+                    const std::uint32_t v = indices[3 * t + k];
+                    if (rings[v] != 0) {
+                        mine.emplace_back(v, std::uint32_t(t));
+                    }
+                }
+            }
+        }
+        std::size_t pairCount = 0;
+        for (const auto& pairs : found) {
+            pairCount += pairs.size();
+        }
+        lists_.reserve(pairCount / 4);
+        for (const auto& pairs : found) {  // threads' static chunks: triangle order
+            for (const auto& [v, t] : pairs) {
+                lists_[v].push_back(t);
+            }
+        }
+        for (auto& [v, list] : lists_) {
+            std::sort(list.begin(), list.end());
         }
     }
 
@@ -94,7 +159,11 @@ class SliverCleaner {
         return isSliver(p, minEdge_);
     }
 
-    void fix(const std::vector<std::uint32_t>& bad, SliverCleanupReport& report) {
+    // Fixes what it can of the bad triangles (learnAround them first) and returns those still
+    // bad.
+    std::vector<std::uint32_t> fix(const std::vector<std::uint32_t>& bad,
+                                   SliverCleanupReport& report) {
+        reachedBeyond_ = false;
         std::deque<std::uint32_t> queue(bad.begin(), bad.end());
         // The triangles that can be bad at the end: the bad ones and every one an operation
         // reshaped (a collapse touches all triangles of the merged vertex, a flip its two).
@@ -127,39 +196,60 @@ class SliverCleaner {
                 ++report.specks;
             }
         }
+        std::vector<std::uint32_t> left;
         for (std::uint32_t t : candidates) {
-            report.left += isBad(t) ? 1 : 0;
+            if (isBad(t)) {
+                left.push_back(t);
+            }
         }
+        return left;
     }
 
-    // Drops the dead triangles and the vertices no triangle uses.
+    bool anyDead() const { return removedAny_; }
+    // Whether the last fix left a triangle because an operation would have reached past the
+    // known rings (another round, with rings around what is left, may then fix it).
+    bool reachedBeyond() const { return reachedBeyond_; }
+
+    // Drops the dead triangles and the vertices no triangle uses, keeping the order of the rest.
     void compact() {
-        std::vector<std::uint32_t> remap(mesh_.vertexCount(), kNone);
-        std::vector<std::uint32_t> indices;
-        indices.reserve(mesh_.indices.size());
-        std::size_t used = 0;
-        for (std::size_t t = 0; t < triangles_; ++t) {
-            if (!alive_[t]) {
-                continue;
-            }
-            for (int k = 0; k < 3; ++k) {
-                const std::uint32_t v = mesh_.indices[3 * t + k];
-                if (remap[v] == kNone) {
-                    remap[v] = std::uint32_t(used++);
+        const std::int64_t vertices = std::int64_t(mesh_.vertexCount());
+        std::vector<std::uint32_t> remap(std::size_t(vertices), 0);  // used: 1, then new index
+        std::uint32_t* used = remap.data();
+        const std::uint32_t* indices = mesh_.indices.data();
+#pragma omp parallel for schedule(static)
+        for (std::int64_t t = 0; t < std::int64_t(triangles_); ++t) {
+            if (alive_[std::size_t(t)]) {
+                for (int k = 0; k < 3; ++k) {
+                    __atomic_store_n(&used[indices[3 * t + k]], 1u, __ATOMIC_RELAXED);
                 }
-                indices.push_back(remap[v]);
             }
         }
-        std::vector<Vec3f> positions(used), normals(used);
-        for (std::size_t v = 0; v < remap.size(); ++v) {
-            if (remap[v] != kNone) {
-                positions[remap[v]] = mesh_.positions[v];
-                normals[remap[v]] = mesh_.normals[v];
+        std::uint32_t count = 0;
+        for (std::int64_t v = 0; v < vertices; ++v) {
+            const std::uint32_t isUsed = remap[std::size_t(v)];
+            remap[std::size_t(v)] = isUsed ? count : kNone;
+            count += isUsed;
+        }
+        std::vector<Vec3f> positions(count), normals(count);
+#pragma omp parallel for schedule(static)
+        for (std::int64_t v = 0; v < vertices; ++v) {
+            if (remap[std::size_t(v)] != kNone) {
+                positions[remap[std::size_t(v)]] = mesh_.positions[std::size_t(v)];
+                normals[remap[std::size_t(v)]] = mesh_.normals[std::size_t(v)];
+            }
+        }
+        std::vector<std::uint32_t> kept;
+        kept.reserve(mesh_.indices.size());
+        for (std::size_t t = 0; t < triangles_; ++t) {
+            if (alive_[t]) {
+                for (int k = 0; k < 3; ++k) {
+                    kept.push_back(remap[indices[3 * t + k]]);
+                }
             }
         }
         mesh_.positions = std::move(positions);
         mesh_.normals = std::move(normals);
-        mesh_.indices = std::move(indices);
+        mesh_.indices = std::move(kept);
     }
 
    private:
@@ -167,9 +257,18 @@ class SliverCleaner {
     double minEdge_;
     std::size_t triangles_;
     std::vector<char> alive_;
-    std::vector<std::size_t> offsets_;
-    std::vector<std::uint32_t> incident_;
-    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> changed_;
+    // The triangles of each vertex the cleaner knows (learnAround); a vertex not here is beyond
+    // its reach, and no operation touches it.
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> lists_;
+    bool removedAny_ = false;
+
+    bool reachedBeyond_ = false;  // an operation was refused for a vertex beyond the rings
+
+    bool known(std::uint32_t v) {
+        const bool isKnown = lists_.count(v) != 0;
+        reachedBeyond_ = reachedBeyond_ || !isKnown;
+        return isKnown;
+    }
 
     std::uint32_t* corners(std::uint32_t t) { return &mesh_.indices[3 * std::size_t(t)]; }
     const std::uint32_t* corners(std::uint32_t t) const {
@@ -184,15 +283,11 @@ class SliverCleaner {
     }
 
     std::vector<std::uint32_t> trianglesOf(std::uint32_t v) const {
-        const auto it = changed_.find(v);
-        if (it != changed_.end()) {
-            return it->second;
-        }
-        return std::vector<std::uint32_t>(incident_.begin() + std::ptrdiff_t(offsets_[v]),
-                                          incident_.begin() + std::ptrdiff_t(offsets_[v + 1]));
+        const auto it = lists_.find(v);
+        return it != lists_.end() ? it->second : std::vector<std::uint32_t>{};
     }
     void setTrianglesOf(std::uint32_t v, std::vector<std::uint32_t> list) {
-        changed_[v] = std::move(list);
+        lists_[v] = std::move(list);
     }
 
     std::vector<std::uint32_t> neighboursOf(std::uint32_t v) const {
@@ -265,6 +360,9 @@ class SliverCleaner {
         for (std::size_t k = 0; k < piece.size(); ++k) {
             for (int c = 0; c < 3; ++c) {
                 const std::uint32_t v = corners(piece[k])[c];
+                if (!known(v)) {
+                    return false;
+                }
                 for (int axis = 0; axis < 3; ++axis) {
                     low[axis] = std::min(low[axis], position(v)[axis]);
                     high[axis] = std::max(high[axis], position(v)[axis]);
@@ -284,6 +382,7 @@ class SliverCleaner {
         }
         for (std::uint32_t u : piece) {
             alive_[u] = 0;
+            removedAny_ = true;
             for (int c = 0; c < 3; ++c) {
                 setTrianglesOf(corners(u)[c], {});
             }
@@ -294,6 +393,9 @@ class SliverCleaner {
     // Collapses edge (a, b) into b, moved to the edge's midpoint.
     bool collapse(std::uint32_t a, std::uint32_t b, SliverCleanupReport& report,
                   std::vector<std::uint32_t>& touched) {
+        if (!known(a) || !known(b)) {
+            return false;
+        }
         const std::vector<std::uint32_t> shared = edgeTriangles(a, b);
         if (shared.size() != 2) {
             return false;
@@ -302,6 +404,9 @@ class SliverCleaner {
         for (int k = 0; k < 2; ++k) {
             const std::uint32_t* c = corners(shared[std::size_t(k)]);
             opposite[k] = c[0] != a && c[0] != b ? c[0] : (c[1] != a && c[1] != b ? c[1] : c[2]);
+            if (!known(opposite[k])) {
+                return false;
+            }
         }
         const std::vector<std::uint32_t> na = neighboursOf(a), nb = neighboursOf(b);
         std::vector<std::uint32_t> common;
@@ -338,6 +443,7 @@ class SliverCleaner {
         // Done: the two triangles of the edge die, a's others take b.
         for (std::uint32_t dead : shared) {
             alive_[dead] = 0;
+            removedAny_ = true;
             for (int k = 0; k < 3; ++k) {
                 const std::uint32_t v = corners(dead)[k];
                 if (v != a && v != b) {
@@ -375,6 +481,9 @@ class SliverCleaner {
               std::vector<std::uint32_t>& touched) {
         const std::uint32_t* c1 = corners(t);
         const std::uint32_t q = c1[k], r = c1[(k + 1) % 3], p = c1[(k + 2) % 3];
+        if (!known(q) || !known(r) || !known(p)) {
+            return false;
+        }
         const std::vector<std::uint32_t> shared = edgeTriangles(q, r);
         if (shared.size() != 2) {
             return false;
@@ -389,6 +498,9 @@ class SliverCleaner {
             return false;  // wound the same way: leave it
         }
         const std::uint32_t s = c2[(at + 2) % 3];
+        if (!known(s)) {
+            return false;
+        }
         const std::vector<std::uint32_t> np = neighboursOf(p);
         if (s == p || std::binary_search(np.begin(), np.end(), s)) {
             return false;  // the new edge exists already
@@ -462,9 +574,21 @@ SliverCleanupReport removeSlivers(TriangleMesh& mesh, double cellSize) {
     if (badList.empty()) {
         return report;
     }
+    // Rounds: what a round leaves (an operation that would have reached past the known rings) is
+    // tried again with rings around it.
     SliverCleaner cleaner(mesh, cellSize);
-    cleaner.fix(badList, report);
-    cleaner.compact();
+    std::vector<std::uint32_t> left = badList;
+    for (int round = 0; round < 3 && !left.empty(); ++round) {
+        cleaner.learnAround(left);
+        left = cleaner.fix(left, report);
+        if (!cleaner.reachedBeyond()) {
+            break;
+        }
+    }
+    report.left = left.size();
+    if (cleaner.anyDead()) {
+        cleaner.compact();
+    }
     return report;
 }
 
