@@ -3,7 +3,7 @@
 # (issue 17, part 2): build, the GPU tests of the surface and the step, weir_surface_bench on
 # synthetic frames (1M, 10M, 1e8 particles) and on real dam-break frames, frame output timed
 # against frames off, the GPU reference step in the same call, throttling checked before and
-# after. Results under $OUT (or ./gpu-out; the device tool brings back a few files only, so
+# after ("suite" runs the whole ctest suite instead of "test"'s GPU tests). Results under $OUT (or ./gpu-out; the device tool brings back a few files only, so
 # send OUT=/tmp/x and tar it into the tool's $OUT). PARTS picks what runs (default all of
 # "build test synthetic real frames reference").
 # Usage: PARTS="build synthetic" bash bench/gpu_surface.sh [reference-dir]
@@ -25,6 +25,11 @@ if has build; then
         { grep -E "error" -A3 /tmp/weir-build.log | head -40; exit 1; }
 fi
 bench=./build-gpu/weir_surface_bench
+if has suite; then  # the whole suite, GPU tests included
+    (cd build-gpu && OMP_NUM_THREADS=4 timeout "${SUITE_SECONDS:-400}" ctest -j6 \
+        --output-on-failure >"$out/ctest.log" 2>&1)
+    tail -5 "$out/ctest.log"
+fi
 if has test; then
     ./build-gpu/weir_tests --gtest_filter='*Cuda*:*cuda*:*Gpu*:SparseLattice*:Surface*:Anisotrop*:Sliver*:MarchingCubes*' \
         >"$out/gpu-tests.log" 2>&1
@@ -50,9 +55,11 @@ if has real; then
     timeout 200 ./build-gpu/weir run dam_break --particles 1000000 --frames 12 --format ply -q \
         -o /tmp/db1M >"$out/run-1M.log" 2>&1
     frame=$(ls /tmp/db1M/frame_*.ply | tail -1)
-    surface real-iso-1M --frame "$frame" --backend cuda --repeats 5
-    surface real-aniso-1M --frame "$frame" --backend cuda --surface-field anisotropic --repeats 5
-    surface real-cpu-iso-1M --frame "$frame" --backend cpu --repeats 3
+    spacing=$(python3 -c "import json; print(json.load(open('/tmp/db1M/frames.json'))['spacing'])")
+    surface real-iso-1M --frame "$frame" --spacing "$spacing" --backend cuda --repeats 5
+    surface real-aniso-1M --frame "$frame" --spacing "$spacing" --backend cuda \
+        --surface-field anisotropic --repeats 5
+    surface real-cpu-iso-1M --frame "$frame" --spacing "$spacing" --backend cpu --repeats 3
     ls -la /tmp/db1M | head -20 >"$out/run-1M-files.txt"
 fi
 if has frames; then
