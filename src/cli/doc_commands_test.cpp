@@ -257,7 +257,9 @@ class DocCommands : public Cli {
                 ++skipped;
                 continue;
             }
-            line = std::regex_replace(line, std::regex(R"( --render\b| --surface\b)"), "");
+            // (Whole options only: --surface-field stays.)
+            line = std::regex_replace(line, std::regex(R"( --render(?![-\w])| --surface(?![-\w]))"),
+                                      "");
 #endif
             if (needs.display) {
                 line = "xvfb-run -a -s '-screen 0 640x480x24' " + line;

@@ -10,6 +10,7 @@
 #include <deque>
 #include <limits>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "core/vec3.h"
@@ -82,6 +83,7 @@ class SliverCleaner {
     // Builds the triangle lists of the vertices within kKnownRings rings of the bad triangles
     // (ring 0: their corners; ring r + 1: the other corners of the triangles at ring r).
     void learnAround(const std::vector<std::uint32_t>& bad) {
+        keepOrphans();
         lists_.clear();
         std::vector<std::uint8_t> ring(mesh_.vertexCount(), 0);  // 0: none, else ring + 1
         for (std::uint32_t t : bad) {
@@ -210,46 +212,76 @@ class SliverCleaner {
     // known rings (another round, with rings around what is left, may then fix it).
     bool reachedBeyond() const { return reachedBeyond_; }
 
-    // Drops the dead triangles and the vertices no triangle uses, keeping the order of the rest.
+    // Drops the dead triangles and the vertices no triangle uses: each hole takes the last
+    // triangle (vertex) still used, so that this costs what died, plus one parallel pass over
+    // the indices to rename the vertices that moved.
     void compact() {
-        const std::int64_t vertices = std::int64_t(mesh_.vertexCount());
-        std::vector<std::uint32_t> remap(std::size_t(vertices), 0);  // used: 1, then new index
-        std::uint32_t* used = remap.data();
-        const std::uint32_t* indices = mesh_.indices.data();
+        std::sort(dead_.begin(), dead_.end());
+        dead_.erase(std::unique(dead_.begin(), dead_.end()), dead_.end());
+        std::uint32_t* indices = mesh_.indices.data();
+        std::size_t count = triangles_;
+        for (std::uint32_t hole : dead_) {
+            while (count > 0 && !alive_[count - 1]) {
+                --count;
+            }
+            if (hole >= count) {
+                break;
+            }
+            std::copy(indices + 3 * (count - 1), indices + 3 * count, indices + 3 * hole);
+            alive_[hole] = 1;
+            alive_[count - 1] = 0;
+            --count;
+        }
+        while (count > 0 && !alive_[count - 1]) {
+            --count;
+        }
+        mesh_.indices.resize(3 * count);
+
+        // A known vertex with no triangle left (a collapsed edge's first end, a speck's) is
+        // unused; every other vertex keeps its triangles.
+        keepOrphans();
+        std::vector<std::uint32_t> unused = orphans_;
+        std::sort(unused.begin(), unused.end());
+        unused.erase(std::unique(unused.begin(), unused.end()), unused.end());
+        std::unordered_set<std::uint32_t> holes(unused.begin(), unused.end());  // still empty
+        std::size_t vertices = mesh_.vertexCount();
+        const auto trimTail = [&] {
+            while (vertices > 0 && holes.count(std::uint32_t(vertices - 1)) != 0) {
+                holes.erase(std::uint32_t(vertices - 1));
+                --vertices;
+            }
+        };
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> moves;  // (from, to)
+        for (std::uint32_t hole : unused) {
+            trimTail();
+            if (hole >= vertices) {
+                break;
+            }
+            const std::uint32_t last = std::uint32_t(vertices - 1);
+            mesh_.positions[hole] = mesh_.positions[last];
+            mesh_.normals[hole] = mesh_.normals[last];
+            moves.emplace_back(last, hole);
+            holes.erase(hole);
+            --vertices;
+        }
+        trimTail();
+        if (!moves.empty()) {
+            std::vector<char> moved(mesh_.vertexCount(), 0);
+            std::unordered_map<std::uint32_t, std::uint32_t> to;
+            for (const auto& [from, hole] : moves) {
+                moved[from] = 1;
+                to[from] = hole;
+            }
+            const std::int64_t entries = std::int64_t(mesh_.indices.size());
 #pragma omp parallel for schedule(static)
-        for (std::int64_t t = 0; t < std::int64_t(triangles_); ++t) {
-            if (alive_[std::size_t(t)]) {
-                for (int k = 0; k < 3; ++k) {
-                    __atomic_store_n(&used[indices[3 * t + k]], 1u, __ATOMIC_RELAXED);
+            for (std::int64_t i = 0; i < entries; ++i) {
+                if (moved[indices[i]]) {
+                    indices[i] = to.at(indices[i]);
                 }
             }
         }
-        std::uint32_t count = 0;
-        for (std::int64_t v = 0; v < vertices; ++v) {
-            const std::uint32_t isUsed = remap[std::size_t(v)];
-            remap[std::size_t(v)] = isUsed ? count : kNone;
-            count += isUsed;
-        }
-        std::vector<Vec3f> positions(count), normals(count);
-#pragma omp parallel for schedule(static)
-        for (std::int64_t v = 0; v < vertices; ++v) {
-            if (remap[std::size_t(v)] != kNone) {
-                positions[remap[std::size_t(v)]] = mesh_.positions[std::size_t(v)];
-                normals[remap[std::size_t(v)]] = mesh_.normals[std::size_t(v)];
-            }
-        }
-        std::vector<std::uint32_t> kept;
-        kept.reserve(mesh_.indices.size());
-        for (std::size_t t = 0; t < triangles_; ++t) {
-            if (alive_[t]) {
-                for (int k = 0; k < 3; ++k) {
-                    kept.push_back(remap[indices[3 * t + k]]);
-                }
-            }
-        }
-        mesh_.positions = std::move(positions);
-        mesh_.normals = std::move(normals);
-        mesh_.indices = std::move(kept);
+        mesh_.positions.resize(vertices);
+        mesh_.normals.resize(vertices);
     }
 
    private:
@@ -261,6 +293,18 @@ class SliverCleaner {
     // its reach, and no operation touches it.
     std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> lists_;
     bool removedAny_ = false;
+    std::vector<std::uint32_t> dead_;     // triangles removed
+    std::vector<std::uint32_t> orphans_;  // vertices left without a triangle
+
+    // Notes the known vertices left without a triangle before the lists are rebuilt (a vertex
+    // no alive triangle uses is in no later round's lists).
+    void keepOrphans() {
+        for (const auto& [v, list] : lists_) {
+            if (list.empty()) {
+                orphans_.push_back(v);
+            }
+        }
+    }
 
     bool reachedBeyond_ = false;  // an operation was refused for a vertex beyond the rings
 
@@ -382,6 +426,7 @@ class SliverCleaner {
         }
         for (std::uint32_t u : piece) {
             alive_[u] = 0;
+            dead_.push_back(u);
             removedAny_ = true;
             for (int c = 0; c < 3; ++c) {
                 setTrianglesOf(corners(u)[c], {});
@@ -443,6 +488,7 @@ class SliverCleaner {
         // Done: the two triangles of the edge die, a's others take b.
         for (std::uint32_t dead : shared) {
             alive_[dead] = 0;
+            dead_.push_back(dead);
             removedAny_ = true;
             for (int k = 0; k < 3; ++k) {
                 const std::uint32_t v = corners(dead)[k];

@@ -30,8 +30,11 @@ struct SliverCleanupReport {
 // more; a flip does not make an edge that exists) and turns no triangle over. A bad triangle left
 // after that lies on a speck, a closed piece of a few triangles under a tenth of a cell across
 // (spray a hair past the iso-value, where every collapse would pinch): the speck is removed.
-// Unused vertices are dropped at the end. Triangles are checked in parallel; a mesh without slivers
-// is left as it is.
+// The cleaner knows the triangles of the vertices within three rings of the bad triangles only
+// (found by parallel passes over the mesh) and leaves any operation that would reach further to
+// a next round with rings around what is left, so that it costs what it fixes, not the mesh.
+// Dead triangles and unused vertices are dropped at the end, each hole taking the last triangle
+// (vertex) still used. Triangles are checked in parallel; a mesh without slivers is left as it is.
 SliverCleanupReport removeSlivers(TriangleMesh& mesh, double cellSize);
 
 }  // namespace weir
