@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "cli/cli_test_support.h"
+#include "io/optional_formats.h"
 #include "scene/scene.h"
 
 namespace weir {
@@ -242,6 +243,10 @@ class DocCommands : public Cli {
                 why = "no display (xvfb-run)";
             } else if (needs.blender && !onPath("blender")) {
                 why = "no blender";
+            } else if (!openVdbBuilt() &&
+                       std::regex_search(c.command,
+                                         std::regex(R"(--(mesh-)?format [a-z,]*\bvdb\b)"))) {
+                why = "built without OpenVDB";
             }
             if (!why.empty()) {
                 std::cout << "[ skipped  ] " << where << " (" << why << ")\n";
