@@ -55,6 +55,45 @@ void expectSameMesh(const TriangleMesh& a, const TriangleMesh& b) {
     }
 }
 
+// A surface PLY written with the frame's particles carries each vertex's velocity (vx vy vz,
+// what Houdini reads as attributes and weir_blender.py as `velocity`): for particles all moving
+// alike, that velocity; the mesh still reads back.
+TEST_F(MeshFiles, SurfacePlyCarriesTheParticlesVelocityPerVertex) {
+    const TriangleMesh mesh = tetrahedron();
+    HostParticles particles;
+    for (int i = 0; i < 4; ++i) {
+        for (int j = 0; j < 4; ++j) {
+            for (int k = 0; k < 4; ++k) {
+                particles.push(Vec3d(i, j, k) * 0.3, Vec3d(1.5, -2, 0.25));
+            }
+        }
+    }
+    writeMesh(path("v.ply"), MeshFormat::Ply, SurfaceFrame{mesh, &particles, 0.3});
+    expectSameMesh(readMesh(path("v.ply")), mesh);
+    std::ifstream in(path("v.ply"), std::ios::binary);
+    std::string header, line;
+    while (std::getline(in, line) && line != "end_header") {
+        header += line + "\n";
+    }
+    EXPECT_NE(header.find("property float nz\nproperty float vx\nproperty float vy\n"
+                          "property float vz\nelement face 4"),
+              std::string::npos)
+        << header;
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+        float record[9];
+        in.read(reinterpret_cast<char*>(record), sizeof record);
+        EXPECT_FLOAT_EQ(record[0], mesh.positions[v].x);
+        EXPECT_NEAR(record[6], 1.5, 1e-5);
+        EXPECT_NEAR(record[7], -2, 1e-5);
+        EXPECT_NEAR(record[8], 0.25, 1e-5);
+    }
+    // Without the particles: positions and normals only, as before.
+    writeMesh(path("plain.ply"), MeshFormat::Ply, mesh);
+    EXPECT_EQ(
+        fs::file_size(path("plain.ply")) + 4 * 12 + 3 * std::string("property float vx\n").size(),
+        fs::file_size(path("v.ply")));
+}
+
 TEST_F(MeshFiles, ObjAndPlyReadBackExactly) {
     const TriangleMesh mesh = tetrahedron();
     writeObj(path("t.obj"), mesh);

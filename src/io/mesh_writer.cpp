@@ -11,6 +11,7 @@
 #include "io/io_util.h"
 #include "io/optional_formats.h"
 #include "io/vdb_file.h"
+#include "surface/point_velocity.h"
 
 namespace weir {
 
@@ -22,9 +23,17 @@ const std::vector<MeshFormatEntry>& meshFormatTable() {
     static const std::vector<MeshFormatEntry> table = {
         {"obj", "Wavefront OBJ text with normals",
          [](const std::string& path, const SurfaceFrame& frame) { writeObj(path, frame.mesh); }},
-        {"ply", "binary PLY with normals",
+        {"ply", "binary PLY with normals (and per-vertex velocity vx vy vz)",
          [](const std::string& path, const SurfaceFrame& frame) {
-             writeMeshPly(path, frame.mesh);
+             // Each vertex's velocity, for motion blur: the particles' within 2 d
+             // (surface/point_velocity.h), as the USD stage's surface has it.
+             if (frame.particles != nullptr && frame.spacing > 0) {
+                 const std::vector<Vec3f> velocities =
+                     particleVelocityAt(*frame.particles, frame.mesh.positions, 2 * frame.spacing);
+                 writeMeshPly(path, frame.mesh, &velocities);
+             } else {
+                 writeMeshPly(path, frame.mesh);
+             }
          }},
 #if defined(WEIR_HAS_OPENVDB)
         {"vdb", "OpenVDB: the surface as a level set, with a velocity grid and the points",
@@ -122,12 +131,19 @@ void writeObj(const std::string& path, const TriangleMesh& mesh) {
     });
 }
 
-void writeMeshPly(const std::string& path, const TriangleMesh& mesh) {
+void writeMeshPly(const std::string& path, const TriangleMesh& mesh,
+                  const std::vector<Vec3f>* velocities) {
     if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
         throw std::invalid_argument("mesh for '" + path + "' has " +
                                     std::to_string(mesh.normals.size()) + " normals for " +
                                     std::to_string(mesh.positions.size()) + " vertices");
     }
+    if (velocities != nullptr && velocities->size() != mesh.positions.size()) {
+        throw std::invalid_argument("mesh for '" + path + "' has " +
+                                    std::to_string(velocities->size()) + " velocities for " +
+                                    std::to_string(mesh.positions.size()) + " vertices");
+    }
+    const int columns = velocities != nullptr ? 9 : 6;
     writeFileAtomically(path, [&](std::ostream& out) {
         out << "ply\n"
                "format binary_little_endian 1.0\n"
@@ -137,16 +153,23 @@ void writeMeshPly(const std::string& path, const TriangleMesh& mesh) {
             << "\n"
                "property float x\nproperty float y\nproperty float z\n"
                "property float nx\nproperty float ny\nproperty float nz\n"
-               "element face "
-            << mesh.triangleCount()
+            << (velocities != nullptr ? "property float vx\nproperty float vy\nproperty float vz\n"
+                                      : "")
+            << "element face " << mesh.triangleCount()
             << "\n"
                "property list uchar uint vertex_indices\n"
                "end_header\n";
         const bool hasNormals = !mesh.normals.empty();
-        writeSequence<float>(out, 6 * mesh.vertexCount(), [&](std::size_t i) {
-            const std::size_t v = i / 6;
-            const int k = int(i % 6);
-            return k < 3 ? mesh.positions[v][k] : (hasNormals ? mesh.normals[v][k - 3] : 0.0f);
+        writeSequence<float>(out, std::size_t(columns) * mesh.vertexCount(), [&](std::size_t i) {
+            const std::size_t v = i / std::size_t(columns);
+            const int k = int(i % std::size_t(columns));
+            if (k < 3) {
+                return mesh.positions[v][k];
+            }
+            if (k < 6) {
+                return hasNormals ? mesh.normals[v][k - 3] : 0.0f;
+            }
+            return (*velocities)[v][k - 6];
         });
         // 13 bytes per face: the count 3, then three uint32 indices.
         constexpr std::size_t kFaceBytes = 1 + 3 * sizeof(std::uint32_t);

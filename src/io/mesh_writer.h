@@ -57,9 +57,11 @@ std::string meshFormatHelp();
 // `f a//a b//b c//c` per triangle (1-based). Throws IoError when the file cannot be written.
 void writeObj(const std::string& path, const TriangleMesh& mesh);
 
-// `element vertex` with float x y z nx ny nz, `element face` with a `list uchar uint
-// vertex_indices` of three per triangle. Throws IoError when the file cannot be written.
-void writeMeshPly(const std::string& path, const TriangleMesh& mesh);
+// `element vertex` with float x y z nx ny nz (and vx vy vz, each vertex's velocity in m/s, where
+// `velocities` is given: one per vertex), `element face` with a `list uchar uint vertex_indices`
+// of three per triangle. Throws IoError when the file cannot be written.
+void writeMeshPly(const std::string& path, const TriangleMesh& mesh,
+                  const std::vector<Vec3f>* velocities = nullptr);
 
 void writeMesh(const std::string& path, MeshFormat format, const TriangleMesh& mesh);
 void writeMesh(const std::string& path, MeshFormat format, const SurfaceFrame& frame);
