@@ -186,20 +186,31 @@ void copyOnCores(void* dst, const void* src, std::size_t bytes) {
     }
 }
 
+// The staging chunks, locked, for a copy of `bytes`: an empty lock where the copy goes direct
+// (under kStagedCopyBytes, or no chunks for the current device).
+std::unique_lock<std::mutex> lockStagingFor(std::size_t bytes) {
+    if (bytes < kStagedCopyBytes) {
+        return {};
+    }
+    int device = 0;
+    WEIR_CUDA_CHECK(cudaGetDevice(&device));
+    StagingChunks& staging = stagingChunks();
+    std::unique_lock<std::mutex> lock(staging.mutex);
+    if (!staging.readyFor(device)) {
+        return {};
+    }
+    return lock;
+}
+
 }  // namespace
 
 void CudaExec::copyToDevice(void* deviceDst, const void* hostSrc, std::size_t bytes) {
     if (bytes == 0) {
         return;
     }
-    int device = 0;
-    WEIR_CUDA_CHECK(cudaGetDevice(&device));
+    const std::unique_lock<std::mutex> staged = lockStagingFor(bytes);
     StagingChunks& staging = stagingChunks();
-    std::unique_lock<std::mutex> lock(staging.mutex, std::defer_lock);
-    if (bytes >= kStagedCopyBytes) {
-        lock.lock();
-    }
-    if (!lock.owns_lock() || !staging.readyFor(device)) {
+    if (!staged.owns_lock()) {
         WEIR_CUDA_CHECK(
             cudaMemcpyAsync(deviceDst, hostSrc, bytes, cudaMemcpyHostToDevice, stream_));
         WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
@@ -222,14 +233,9 @@ void CudaExec::copyToHost(void* hostDst, const void* deviceSrc, std::size_t byte
     if (bytes == 0) {
         return;
     }
-    int device = 0;
-    WEIR_CUDA_CHECK(cudaGetDevice(&device));
+    const std::unique_lock<std::mutex> staged = lockStagingFor(bytes);
     StagingChunks& staging = stagingChunks();
-    std::unique_lock<std::mutex> lock(staging.mutex, std::defer_lock);
-    if (bytes >= kStagedCopyBytes) {
-        lock.lock();
-    }
-    if (!lock.owns_lock() || !staging.readyFor(device)) {
+    if (!staged.owns_lock()) {
         WEIR_CUDA_CHECK(
             cudaMemcpyAsync(hostDst, deviceSrc, bytes, cudaMemcpyDeviceToHost, stream_));
         WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
