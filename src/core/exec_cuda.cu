@@ -211,9 +211,7 @@ void CudaExec::copyToDevice(void* deviceDst, const void* hostSrc, std::size_t by
     const std::unique_lock<std::mutex> staged = lockStagingFor(bytes);
     StagingChunks& staging = stagingChunks();
     if (!staged.owns_lock()) {
-        WEIR_CUDA_CHECK(
-            cudaMemcpyAsync(deviceDst, hostSrc, bytes, cudaMemcpyHostToDevice, stream_));
-        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+        copyAndWait(deviceDst, hostSrc, bytes, cudaMemcpyHostToDevice);
         return;
     }
     for (std::size_t offset = 0, k = 0; offset < bytes; offset += kStagingChunkBytes, ++k) {
@@ -236,9 +234,7 @@ void CudaExec::copyToHost(void* hostDst, const void* deviceSrc, std::size_t byte
     const std::unique_lock<std::mutex> staged = lockStagingFor(bytes);
     StagingChunks& staging = stagingChunks();
     if (!staged.owns_lock()) {
-        WEIR_CUDA_CHECK(
-            cudaMemcpyAsync(hostDst, deviceSrc, bytes, cudaMemcpyDeviceToHost, stream_));
-        WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
+        copyAndWait(hostDst, deviceSrc, bytes, cudaMemcpyDeviceToHost);
         return;
     }
     const std::size_t chunks = (bytes + kStagingChunkBytes - 1) / kStagingChunkBytes;
@@ -264,8 +260,8 @@ void CudaExec::copyToHost(void* hostDst, const void* deviceSrc, std::size_t byte
     }
 }
 
-void CudaExec::download1(void* dst, const void* src, std::size_t bytes) {
-    WEIR_CUDA_CHECK(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToHost, stream_));
+void CudaExec::copyAndWait(void* dst, const void* src, std::size_t bytes, cudaMemcpyKind kind) {
+    WEIR_CUDA_CHECK(cudaMemcpyAsync(dst, src, bytes, kind, stream_));
     WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_));
 }
 

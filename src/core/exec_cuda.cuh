@@ -224,7 +224,7 @@ class CudaExec {
     template <class T>
     T readOne(const Buffer<T>& src, std::size_t index) {
         T value;
-        download1(&value, src.data() + index, sizeof(T));
+        copyToHost(&value, src.data() + index, sizeof(T));
         return value;
     }
     template <class T>
@@ -276,7 +276,8 @@ class CudaExec {
     cudaStream_t stream() const { return stream_; }
 
    private:
-    void download1(void* dst, const void* src, std::size_t bytes);
+    // One cudaMemcpyAsync on the stream, then waits for it.
+    void copyAndWait(void* dst, const void* src, std::size_t bytes, cudaMemcpyKind kind);
     cudaEvent_t takeEvent();
     template <class T>
     void deviceInclusiveScan(const T* in, T* out, Index n);

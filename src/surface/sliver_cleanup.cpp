@@ -142,13 +142,12 @@ class SliverCleaner {
             pairCount += pairs.size();
         }
         lists_.reserve(pairCount / 4);
-        for (const auto& pairs : found) {  // threads' static chunks: triangle order
+        // The threads' static chunks, in thread order, are in triangle order: each list comes
+        // out sorted.
+        for (const auto& pairs : found) {
             for (const auto& [v, t] : pairs) {
                 lists_[v].push_back(t);
             }
-        }
-        for (auto& [v, list] : lists_) {
-            std::sort(list.begin(), list.end());
         }
     }
 

@@ -119,12 +119,7 @@ TEST(SliverCleanup, SnappingOffTheIsoValueLeavesTheMeshAndRemovesItsSlivers) {
     const double d = 0.01;
     HostParticles ball = testing::latticeBall(Vec3d(0, 0, 0), 0.09, d);
     std::mt19937 rng(5);
-    std::uniform_real_distribution<double> jitter(-0.2 * d, 0.2 * d);
-    for (std::size_t i = 0; i < ball.size(); ++i) {
-        ball.x[i] += Real(jitter(rng));
-        ball.y[i] += Real(jitter(rng));
-        ball.z[i] += Real(jitter(rng));
-    }
+    testing::jitterPositions(ball, rng, 0.2 * d);
     SurfaceOptions unsnapped;
     unsnapped.spacing = d;
     unsnapped.removeSlivers = false;

@@ -71,12 +71,8 @@ std::vector<TriangleKey> canonicalTriangles(const TriangleMesh& mesh) {
 HostParticles splash(double d) {
     HostParticles particles = latticeBall(Vec3d(0, 0, 0), 0.06, d);
     std::mt19937 rng(11);
+    testing::jitterPositions(particles, rng, 0.15 * d);
     std::uniform_real_distribution<double> jitter(-0.15 * d, 0.15 * d);
-    for (std::size_t i = 0; i < particles.size(); ++i) {
-        particles.x[i] += Real(jitter(rng));
-        particles.y[i] += Real(jitter(rng));
-        particles.z[i] += Real(jitter(rng));
-    }
     for (int i = 0; i < 12; ++i) {
         for (int k = 0; k < 9; ++k) {
             particles.push(Vec3d(0.09 + i * d, 0.01 + jitter(rng), -0.04 + k * d), Vec3d());
@@ -126,10 +122,7 @@ TEST(SparseLattice, MemoryFollowsTheFluidNotItsBox) {
     // samples, the drops need a few 10^5.
     const double d = 0.01;
     HostParticles drops = latticeBall(Vec3d(0, 0, 0), 0.05, d);
-    const HostParticles second = latticeBall(Vec3d(1, 1, 1), 0.05, d);
-    for (std::size_t i = 0; i < second.size(); ++i) {
-        drops.push(Vec3d(second.x[i], second.y[i], second.z[i]), Vec3d());
-    }
+    testing::appendPositions(drops, latticeBall(Vec3d(1, 1, 1), 0.05, d));
     SurfaceOptions options;
     options.spacing = d;
     const SurfacePlan box = planSurface(drops, options);

@@ -160,10 +160,7 @@ TEST(Surface, IsoValueInflatesTheSurface) {
 TEST(Surface, SeparateDropsGiveSeparateClosedPieces) {
     const double d = 0.01;
     HostParticles drops = latticeBall(Vec3d(0, 0, 0), 0.05, d);
-    const HostParticles second = latticeBall(Vec3d(0.2, 0, 0), 0.04, d);
-    for (std::size_t i = 0; i < second.size(); ++i) {
-        drops.push(Vec3d(second.x[i], second.y[i], second.z[i]), Vec3d());
-    }
+    testing::appendPositions(drops, latticeBall(Vec3d(0.2, 0, 0), 0.04, d));
     drops.push(Vec3d(0.1, 0.3, 0), Vec3d());  // a lone spray particle: a small sphere of its own
     const MeshMeasures m = measureMesh(reconstructSurface(Backend::Cpu, drops, SurfaceOptions{}));
     EXPECT_TRUE(m.closed());

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <random>
 
 #include "core/vec3.h"
 #include "solver/particles.h"
@@ -39,6 +40,24 @@ inline HostParticles latticeBox(const Vec3d& boxMin, const int counts[3], double
         }
     }
     return particles;
+}
+
+// Moves every particle by up to `amplitude` along each axis, uniformly at random (x, y, z of
+// each particle in turn from rng).
+inline void jitterPositions(HostParticles& particles, std::mt19937& rng, double amplitude) {
+    std::uniform_real_distribution<double> jitter(-amplitude, amplitude);
+    for (std::size_t i = 0; i < particles.size(); ++i) {
+        particles.x[i] += Real(jitter(rng));
+        particles.y[i] += Real(jitter(rng));
+        particles.z[i] += Real(jitter(rng));
+    }
+}
+
+// Adds the positions of `more` to `particles`, at rest.
+inline void appendPositions(HostParticles& particles, const HostParticles& more) {
+    for (std::size_t i = 0; i < more.size(); ++i) {
+        particles.push(Vec3d(more.x[i], more.y[i], more.z[i]), Vec3d());
+    }
 }
 
 constexpr double kPiForTests = 3.14159265358979323846;
