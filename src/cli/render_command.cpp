@@ -85,6 +85,7 @@ class FrameImager {
           surfaceField_(parseSurfaceField(options.surfaceField)) {
         fs::create_directories(imagesDir_);
         renderer_.setGeometry(geometry);
+        bodies_ = geometry.bodies;
         renderer_.setSamples(options.samples);
         renderer_.setMode(surface_ ? RenderMode::Surface : RenderMode::Particles);
     }
@@ -94,8 +95,11 @@ class FrameImager {
     void setRadius(double radius) { radius_ = radius; }
     double radius() const { return radius_; }
 
-    void render(std::int64_t index, const HostParticles& particles) {
+    // poses: the rigid bodies' at this frame (frames.json), drawn where the scene has them.
+    void render(std::int64_t index, const HostParticles& particles,
+                const std::vector<BodyPose>& poses) {
         const auto start = Clock::now();
+        renderer_.setBodies(bodies_, poses);
         if (surface_) {
             SurfaceOptions options;
             options.spacing = 2 * radius_;
@@ -127,6 +131,7 @@ class FrameImager {
    private:
     OffscreenContext context_;  // made current before the renderer is built
     Renderer renderer_;
+    std::vector<BodySpec> bodies_;
     std::string imagesDir_;
     int width_, height_;
     OrbitCamera camera_;
@@ -162,7 +167,7 @@ class RunRenderer : public RunObserver {
                   << imager_->contextDescription() << ")\n";
     }
     void frame(std::int64_t index, double, const HostParticles& particles) override {
-        imager_->render(index, particles);
+        imager_->render(index, particles, particles.bodies);
     }
     void finish() override {
         if (imager_ && imager_->images() > 0) {
@@ -297,7 +302,8 @@ int renderCommand(const RenderOptions& options) {
         }
         ItemProgress progress("render", frames.size(), options.quiet);
         for (std::size_t i = 0; i < frames.size(); ++i) {
-            imager.render(frames[i].index, i == 0 ? first : readFrameFile(frames[i].path));
+            imager.render(frames[i].index, i == 0 ? first : readFrameFile(frames[i].path),
+                          frames[i].bodies);
             progress.update(i + 1);
         }
         progress.finish();

@@ -276,9 +276,17 @@ class Viewer {
         const auto t0 = Clock::now();
         if (interop_ && mode_ == RenderMode::Particles) {
             interop_->update(*renderer_, field_, 0.5 * report_.spacing);
+            if (!scene_.bodies.empty()) {  // the particles stay on the GPU; the poses come back
+                std::vector<BodyPose> poses;
+                for (const RigidBody& b : sim_->rigidBodies()) {
+                    poses.push_back(poseOf(b));
+                }
+                renderer_->setBodies(scene_.bodies, poses);
+            }
         } else {
             sim_->download(host_);
             renderer_->setParticles(host_, field_, 0.5 * report_.spacing);
+            renderer_->setBodies(scene_.bodies, host_.bodies);
         }
         uploadMs_ = 1000 * secondsSince(t0);
         if (mode_ == RenderMode::Surface) {

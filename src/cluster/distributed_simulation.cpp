@@ -140,6 +140,11 @@ DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend
             "solver \"dfsph\" does not run across ranks yet (its solves would need an exchange "
             "per sweep): run it on one GPU or the CPU without mpirun, or use solver \"wcsph\"");
     }
+    if (setup.bodies.size() > 0) {
+        throw SimulationError(
+            "rigid bodies (scene field \"bodies\") do not run across ranks yet (a body's loads "
+            "would be summed over every rank): run the scene on one GPU or the CPU without mpirun");
+    }
     total_ = setup.particleCount();
     const int axis = setup.params.periodicAxes != 0
                          ? slabAxis(setup.params)

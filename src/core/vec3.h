@@ -61,6 +61,11 @@ WEIR_HD inline T length(const Vec3T<T>& a) {
     return std::sqrt(dot(a, a));
 }
 
+template <class T>
+WEIR_HD constexpr Vec3T<T> cross(const Vec3T<T>& a, const Vec3T<T>& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
 using Vec3 = Vec3T<Real>;
 using Vec3d = Vec3T<double>;
 using Vec3f = Vec3T<float>;

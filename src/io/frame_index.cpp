@@ -2,6 +2,7 @@
 #include "io/frame_index.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -88,6 +89,49 @@ RunRecord readRunRecord(const std::string& dir) {
     return record;
 }
 
+namespace {
+
+// A frame's "bodies": [{"position": [3], "orientation": [4], "velocity": [3],
+// "angularVelocity": [3]}, ...] (io/frame_writer.h); bad(field, what) makes the error.
+template <class Bad>
+std::vector<BodyPose> readBodyPoses(const nlohmann::json& list, const std::string& at, Bad& bad) {
+    if (!list.is_array()) {
+        throw bad(at, "is not an array of body poses");
+    }
+    std::vector<BodyPose> poses;
+    for (std::size_t k = 0; k < list.size(); ++k) {
+        const std::string where = at + "[" + std::to_string(k) + "]";
+        auto numbers = [&](const char* key, std::size_t count, double* out) {
+            const nlohmann::json* value =
+                list[k].is_object() && list[k].contains(key) ? &list[k][key] : nullptr;
+            bool ok = value != nullptr && value->is_array() && value->size() == count;
+            for (std::size_t i = 0; ok && i < count; ++i) {
+                ok = (*value)[i].is_number() && std::isfinite((*value)[i].get<double>());
+                if (ok) {
+                    out[i] = (*value)[i].get<double>();
+                }
+            }
+            if (!ok) {
+                throw bad(where + "." + key,
+                          "is missing or not " + std::to_string(count) + " finite numbers");
+            }
+        };
+        BodyPose pose;
+        double v[3];
+        numbers("position", 3, v);
+        pose.position = Vec3d(v[0], v[1], v[2]);
+        numbers("orientation", 4, pose.orientation);
+        numbers("velocity", 3, v);
+        pose.velocity = Vec3d(v[0], v[1], v[2]);
+        numbers("angularVelocity", 3, v);
+        pose.angularVelocity = Vec3d(v[0], v[1], v[2]);
+        poses.push_back(pose);
+    }
+    return poses;
+}
+
+}  // namespace
+
 std::vector<FrameEntry> readFrameIndex(const std::string& dir) {
     const std::string indexPath = (fs::path(dir) / "frames.json").string();
     const nlohmann::json index = loadIndex(dir, indexPath);
@@ -112,8 +156,13 @@ std::vector<FrameEntry> readFrameIndex(const std::string& dir) {
             entry["file"].get<std::string>().empty()) {
             throw bad(at + ".file", "is missing or not a file name");
         }
-        frames.push_back({entry["index"].get<int>(), entry["time"].get<double>(),
-                          (fs::path(dir) / entry["file"].get<std::string>()).string()});
+        frames.push_back({entry["index"].get<int>(),
+                          entry["time"].get<double>(),
+                          (fs::path(dir) / entry["file"].get<std::string>()).string(),
+                          {}});
+        if (entry.contains("bodies")) {
+            frames.back().bodies = readBodyPoses(entry["bodies"], at + ".bodies", bad);
+        }
     }
     if (frames.empty()) {
         throw bad("frames", "lists no frames");

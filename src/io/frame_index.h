@@ -16,6 +16,7 @@ struct FrameEntry {
     int index = 0;
     double time = 0;
     std::string path;  // the frame file, joined to the directory
+    std::vector<BodyPose> bodies;  // the rigid bodies' poses at this frame (empty: none)
 };
 
 // The frames listed in <dir>/frames.json, sorted by index. Throws IoError naming the file and the

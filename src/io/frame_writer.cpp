@@ -45,6 +45,19 @@ void FrameWriter::write(int frameIndex, double time, const HostParticles& partic
     format_.entry().write(path, particles, {time, spacing_, voxelSize_});
     const std::string file = frameFileName(frameIndex);
     frames_[frameIndex] = {time, file};
+    if (!particles.bodies.empty()) {
+        nlohmann::json poses = nlohmann::json::array();
+        auto triple = [](const Vec3d& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
+        for (const BodyPose& b : particles.bodies) {
+            poses.push_back(
+                {{"position", triple(b.position)},
+                 {"orientation",
+                  {b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]}},
+                 {"velocity", triple(b.velocity)},
+                 {"angularVelocity", triple(b.angularVelocity)}});
+        }
+        bodies_[frameIndex] = std::move(poses);
+    }
     if (pvd_) {
         pvd_->add(time, file);
     }
@@ -55,6 +68,9 @@ void FrameWriter::writeIndex() const {
     nlohmann::json frames = nlohmann::json::array();
     for (const auto& [index, entry] : frames_) {
         frames.push_back({{"index", index}, {"time", entry.first}, {"file", entry.second}});
+        if (const auto poses = bodies_.find(index); poses != bodies_.end()) {
+            frames.back()["bodies"] = poses->second;
+        }
     }
     nlohmann::json index = record_;
     index["format"] = formatExtension(format_);

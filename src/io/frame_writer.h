@@ -17,6 +17,9 @@ namespace weir {
 // atomically. After every frame it also rewrites, atomically, <dir>/frames.json:
 //   {"format": "vtu", "count": 2, "frames": [{"index": 0, "time": 0.0, "file": "frame_00000.vtu"},
 //    ...]}
+// and, for a scene with rigid bodies, each frame's "bodies": [{"position": [x, y, z],
+// "orientation": [qx, qy, qz, qw], "velocity": [..], "angularVelocity": [..]}, ...] in the
+// scene's order (their shapes are in the recorded scene).
 // (frames sorted by index, file names relative to dir), and for vtu <dir>/<baseName>.pvd.
 class FrameWriter {
    public:
@@ -50,6 +53,7 @@ class FrameWriter {
     std::string baseName_;
     std::optional<PvdCollection> pvd_;                      // vtu only
     std::map<int, std::pair<double, std::string>> frames_;  // index -> (time, file name)
+    std::map<int, nlohmann::json> bodies_;                  // index -> its bodies' poses
     nlohmann::json record_ = nlohmann::json::object();
     double spacing_ = 0, voxelSize_ = 0;
 };

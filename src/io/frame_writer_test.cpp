@@ -3,8 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "io/frame_index.h"
 #include "io/frame_reader.h"
 #include "io/io_test_support.h"
 
@@ -84,6 +86,45 @@ TEST(FrameWriter, PlyAndCsvWriteIndexButNoPvd) {
         const auto index = nlohmann::json::parse(test::fileText(dir / "frames.json"));
         EXPECT_EQ(index["format"], formatExtension(format));
         EXPECT_EQ(index["frames"][0]["file"], file);
+    }
+}
+
+// Rigid bodies' poses ride with their frame into frames.json and read back as they were written;
+// an index whose poses are malformed is refused naming the field.
+TEST(FrameWriter, BodyPosesGoIntoTheIndexAndReadBack) {
+    TempDir dir;
+    FrameWriter writer(dir.path().string(), FrameFormat::Csv);
+    HostParticles particles = test::randomParticles(4);
+    BodyPose pose;
+    pose.position = Vec3d(0.5, 0.25, -1);
+    pose.orientation[0] = 0.6;
+    pose.orientation[3] = 0.8;
+    pose.velocity = Vec3d(1, 2, 3);
+    pose.angularVelocity = Vec3d(0, 0, -4);
+    particles.bodies = {BodyPose{}, pose};
+    writer.write(0, 0.0, test::randomParticles(4));  // a frame without bodies has no field
+    writer.write(1, 0.1, particles);
+    const std::vector<FrameEntry> frames = readFrameIndex(dir.path().string());
+    ASSERT_EQ(frames.size(), 2u);
+    EXPECT_TRUE(frames[0].bodies.empty());
+    ASSERT_EQ(frames[1].bodies.size(), 2u);
+    const BodyPose& read = frames[1].bodies[1];
+    EXPECT_EQ(read.position.y, 0.25);
+    EXPECT_EQ(read.orientation[0], 0.6);
+    EXPECT_EQ(read.orientation[3], 0.8);
+    EXPECT_EQ(read.velocity.z, 3);
+    EXPECT_EQ(read.angularVelocity.z, -4);
+    EXPECT_EQ(frames[1].bodies[0].orientation[3], 1);
+
+    auto index = nlohmann::json::parse(test::fileText(dir / "frames.json"));
+    index["frames"][1]["bodies"][1]["orientation"] = {0, 0, 1};
+    std::ofstream(dir / "frames.json") << index.dump();
+    try {
+        readFrameIndex(dir.path().string());
+        FAIL() << "a pose of three numbers was read";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("frames[1].bodies[1].orientation"), std::string::npos)
+            << e.what();
     }
 }
 

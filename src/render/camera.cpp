@@ -14,9 +14,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 double radians(double degrees) { return degrees * kPi / 180.0; }
 
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
 Vec3d normalized(const Vec3d& v) { return v / length(v); }
 
 // Comma-separated finite numbers, exactly `count` of them.

@@ -173,6 +173,7 @@ void main() {
 
 const Rgb kLineColour{0.72f, 0.74f, 0.78f};
 const Rgb kObstacleColour{0.58f, 0.56f, 0.52f};
+const Rgb kBodyColour{0.72f, 0.48f, 0.26f};  // rigid bodies: wood
 const Rgb kTextColour{0.93f, 0.93f, 0.93f};
 
 GLuint compileShader(GLenum type, const std::string& source, const char* name) {
@@ -311,6 +312,31 @@ void appendSphere(const SphereShape& sphere, std::vector<float>& out) {
     }
 }
 
+// A rigid body's shape at its pose: its box or sphere built about the origin, each vertex then
+// rotated by the pose's quaternion and moved to its position.
+void appendBody(const BodySpec& body, const BodyPose& pose, std::vector<float>& out) {
+    const std::size_t first = out.size();
+    if (body.isSphere) {
+        appendSphere({Vec3d(), body.sphere.radius}, out);
+    } else {
+        const Vec3d half = (body.box.max - body.box.min) * 0.5;
+        appendBox({half * -1.0, half}, out);
+    }
+    const double* q = pose.orientation;
+    const Vec3d u(q[0], q[1], q[2]);
+    auto turn = [&](const Vec3d& v) {
+        const Vec3d t = cross(u, v) * 2.0;
+        return v + t * q[3] + cross(u, t);
+    };
+    for (std::size_t k = first; k + 6 <= out.size(); k += 6) {
+        const Vec3d p = turn(Vec3d(out[k], out[k + 1], out[k + 2])) + pose.position;
+        const Vec3d n = turn(Vec3d(out[k + 3], out[k + 4], out[k + 5]));
+        const float values[6] = {float(p.x), float(p.y), float(p.z),
+                                 float(n.x), float(n.y), float(n.z)};
+        std::copy(values, values + 6, out.begin() + std::ptrdiff_t(k));
+    }
+}
+
 void appendBoxEdges(const Box& box, std::vector<float>& out) {
     auto corner = [&](int bits) {
         return Vec3d{(bits & 1) ? box.max.x : box.min.x, (bits & 2) ? box.max.y : box.min.y,
@@ -344,7 +370,7 @@ int overlayScale(int height) { return std::max(1, height / 360); }
 }  // namespace
 
 SceneGeometry SceneGeometry::of(const Scene& scene) {
-    return {scene.container, scene.obstacleBoxes, scene.obstacleSpheres};
+    return {scene.container, scene.obstacleBoxes, scene.obstacleSpheres, scene.bodies};
 }
 
 Rgb particleCentreColour(Rgb base, const ParticleLighting& l) {
@@ -369,7 +395,7 @@ struct Renderer::Gpu {
     GLuint particleProgram = 0, solidProgram = 0, waterProgram = 0, lineProgram = 0,
            overlayProgram = 0;
     GLuint particleVao = 0, particleBuffers[2] = {0, 0};
-    Mesh solids, lines, water, overlay;
+    Mesh solids, bodies, lines, water, overlay;
     GLuint colourMap = 0;
     float maxPointSize = 64;
     // Offscreen targets: multisampled colour + depth, resolved into a single-sampled colour.
@@ -447,6 +473,7 @@ Renderer::Renderer() : gpu_(std::make_unique<Gpu>()) {
     glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
     glBindVertexArray(0);
     g.solids.create({3, 3});
+    g.bodies.create({3, 3});
     g.water.create({3, 3});
     g.lines.create({3});
     g.overlay.create({2, 4});
@@ -478,7 +505,7 @@ Renderer::~Renderer() {
     }
     glDeleteBuffers(2, g.particleBuffers);
     glDeleteVertexArrays(1, &g.particleVao);
-    for (Mesh* mesh : {&g.solids, &g.lines, &g.water, &g.overlay}) {
+    for (Mesh* mesh : {&g.solids, &g.bodies, &g.lines, &g.water, &g.overlay}) {
         mesh->destroy();
     }
     glDeleteTextures(1, &g.colourMap);
@@ -498,6 +525,15 @@ void Renderer::setGeometry(const SceneGeometry& geometry) {
     appendBoxEdges(geometry.container, lines);
     gpu_->lines.upload(lines, GLsizei(lines.size() / 3));
     checkGl("scene geometry upload");
+}
+
+void Renderer::setBodies(const std::vector<BodySpec>& bodies, const std::vector<BodyPose>& poses) {
+    std::vector<float> solids;
+    for (std::size_t i = 0; i < std::min(bodies.size(), poses.size()); ++i) {
+        appendBody(bodies[i], poses[i], solids);
+    }
+    gpu_->bodies.upload(solids, GLsizei(solids.size() / 6));
+    checkGl("rigid body upload");
 }
 
 void Renderer::setParticles(const HostParticles& particles, ColourField field, double radius) {
@@ -627,6 +663,15 @@ void Renderer::draw(const OrbitCamera& camera, int width, int height) {
         setLighting(g.solidProgram, lighting);
         glBindVertexArray(g.solids.vao);
         glDrawArrays(GL_TRIANGLES, 0, g.solids.count);
+    }
+    if (g.bodies.count > 0) {
+        glUseProgram(g.solidProgram);
+        setMatrix(g.solidProgram, "view", view);
+        setMatrix(g.solidProgram, "projection", projection);
+        setVec3(g.solidProgram, "baseColour", kBodyColour);
+        setLighting(g.solidProgram, lighting);
+        glBindVertexArray(g.bodies.vao);
+        glDrawArrays(GL_TRIANGLES, 0, g.bodies.count);
     }
     if (mode_ == RenderMode::Surface && g.water.count > 0) {
         glUseProgram(g.waterProgram);

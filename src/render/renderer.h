@@ -17,11 +17,13 @@
 
 namespace weir {
 
-// What stays put between frames: the container and the static obstacles.
+// What stays put between frames: the container and the static obstacles; and the rigid bodies'
+// shapes (where they are comes with each frame: Renderer::setBodies).
 struct SceneGeometry {
     Box container;
     std::vector<Box> obstacleBoxes;
     std::vector<SphereShape> obstacleSpheres;
+    std::vector<BodySpec> bodies;
 
     static SceneGeometry of(const Scene& scene);
 };
@@ -57,6 +59,8 @@ class Renderer {
     Renderer& operator=(const Renderer&) = delete;
 
     void setGeometry(const SceneGeometry& geometry);
+    // The rigid bodies (the scene's shapes) at their poses of this frame, drawn as solids.
+    void setBodies(const std::vector<BodySpec>& bodies, const std::vector<BodyPose>& poses);
     // Uploads positions and the field's values; radius is the sphere drawn per particle (m).
     void setParticles(const HostParticles& particles, ColourField field, double radius);
     // For filling the particle buffers elsewhere (CUDA-OpenGL interop): sizes the two vertex

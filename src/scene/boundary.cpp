@@ -14,9 +14,6 @@
 namespace weir {
 namespace {
 
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
 Vec3d normalize(const Vec3d& v) { return v / length(v); }
 
 // Pieces a mesh triangle's longest edge may be cut into for boundary sampling (its n^2 / 2 points
@@ -581,6 +578,31 @@ BoundarySamples sampleBoundary(const Scene& scene, double d, double h, int layer
         }
     } sample{d, PointSet(0.5 * d)};
     forEachBoundarySurface(scene, d, h, layers, sample);
+    return sample.points.take();
+}
+
+BoundarySamples sampleBodySurface(const BodySpec& body, double d, int layers) {
+    Scene alone;
+    alone.container = body.bounds();
+    if (body.isSphere) {
+        alone.obstacleSpheres.push_back(body.sphere);
+    } else {
+        alone.obstacleBoxes.push_back(body.box);
+    }
+    struct Sample {
+        double d;
+        PointSet points;
+        void box(const Vec3d& lo, const Vec3d& hi, bool container, const Box& region) {
+            if (!container) {  // the scene's container is only the body's bounds
+                sampleBoxSurface(lo, hi, d, false, region, points);
+            }
+        }
+        void sphere(const Vec3d& centre, double radius, const Box& region) {
+            sampleSphereSurface(centre, radius, d, region, points);
+        }
+        void triangle(const TriangleLattice&, const Box&) {}
+    } sample{d, PointSet(0.5 * d)};
+    forEachBoundarySurface(alone, d, d, layers, sample);
     return sample.points.take();
 }
 

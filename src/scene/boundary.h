@@ -32,6 +32,9 @@ struct BoundarySamples {
     std::size_t size() const { return points.size(); }
 };
 BoundarySamples sampleBoundary(const Scene& scene, double d, double h, int layers);
+// A rigid body's surface (scene.h's BodySpec), sampled as an obstacle's: `layers` layers from d/2
+// inside it, in world coordinates at its starting place; faces all -1.
+BoundarySamples sampleBodySurface(const BodySpec& body, double d, int layers);
 // An upper bound on the points sampleBoundary visits (before close ones are dropped), in closed
 // form per box and sphere and one step per row of each mesh triangle: memory can be checked
 // before sampling. Throws SceneError for a mesh triangle too large to sample (naming the mesh).

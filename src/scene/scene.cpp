@@ -467,6 +467,109 @@ void requireInside(const FieldReader& r, const Box& bounds, const Box& container
     }
 }
 
+// "bodies": rigid bodies, floating or driven (BodySpec), each inside the container and clear of
+// the others; they need the model and walls that couple them to the fluid.
+void readBodies(const FieldReader& top, Scene& scene) {
+    top.forEach(
+        "bodies", {"box", "sphere", "density", "mass", "velocity", "angularVelocity", "motion"},
+        [&](const FieldReader& r) {
+            BodySpec body;
+            const std::string shapes =
+                "exactly one of \"box\": {\"min\": [..], \"max\": [..]} "
+                "or \"sphere\": {\"center\": [..], \"radius\": r}";
+            if ((r.find("box") != nullptr) == (r.find("sphere") != nullptr)) {
+                r.fail(r.path(),
+                       r.find("box") ? "both a box and a sphere" : "neither a box nor a sphere",
+                       shapes);
+            }
+            if (r.find("box") != nullptr) {
+                body.box = readBox(r.object("box", {"min", "max"}));
+            } else {
+                body.isSphere = true;
+                body.sphere = readSphere(r.object("sphere", {"center", "radius"}));
+            }
+            requireInside(r, body.bounds(), scene.container,
+                          "a body with bounds " + formatVec(body.bounds().min) + " to " +
+                              formatVec(body.bounds().max));
+            body.velocity = r.vec3("velocity", Vec3d{}, kVelocity);
+            body.angularVelocity = r.vec3("angularVelocity", Vec3d{}, kVelocity);
+            if (r.find("motion") != nullptr) {
+                FieldReader motion = r.object("motion", {"oscillate", "rotate"});
+                if ((motion.find("oscillate") != nullptr) == (motion.find("rotate") != nullptr)) {
+                    motion.fail(
+                        motion.path(), motion.find("rotate") ? "both" : "neither",
+                        "exactly one of \"oscillate\": {\"amplitude\": [..], \"period\": s, "
+                        "\"ramp\": s} or \"rotate\": {\"rate\": [..]}");
+                }
+                if (motion.find("oscillate") != nullptr) {
+                    FieldReader o = motion.object("oscillate", {"amplitude", "period", "ramp"});
+                    body.drive = BodyDrive::Oscillate;
+                    body.amplitude = o.vec3("amplitude", std::nullopt, kCoordinate);
+                    body.period = o.number("period", positiveUpTo(1e6));
+                    body.ramp = o.number("ramp", between(0, 1e6), 0.0);
+                } else {
+                    FieldReader o = motion.object("rotate", {"rate"});
+                    body.drive = BodyDrive::Rotate;
+                    body.rate = o.vec3("rate", std::nullopt, between(-1e4, 1e4));
+                }
+                for (const char* key : {"density", "mass", "velocity", "angularVelocity"}) {
+                    if (r.find(key) != nullptr) {
+                        r.fail(r.pathOf(key), r.written(key),
+                               "absent for a driven body (its \"motion\" sets where it is and "
+                               "how fast it moves; the fluid does not push it back)");
+                    }
+                }
+            } else {
+                if ((r.find("density") != nullptr) == (r.find("mass") != nullptr)) {
+                    r.fail(r.pathOf("density"),
+                           r.find("density") ? "given with a mass" : "missing, and so is mass",
+                           "exactly one of \"density\" (kg/m^3) or \"mass\" (kg) for a floating "
+                           "body, or \"motion\" for a driven one");
+                }
+                body.mass = r.find("mass") != nullptr
+                                ? r.number("mass", positiveUpTo(1e12))
+                                : r.number("density", positiveUpTo(1e6)) * body.volume();
+            }
+            scene.bodies.push_back(body);
+        },
+        64);
+    for (std::size_t a = 0; a < scene.bodies.size(); ++a) {
+        for (std::size_t b = 0; b < a; ++b) {
+            const Box p = scene.bodies[a].bounds(), q = scene.bodies[b].bounds();
+            bool apart = false;
+            for (int axis = 0; axis < 3; ++axis) {
+                apart = apart || p.max[axis] <= q.min[axis] || q.max[axis] <= p.min[axis];
+            }
+            if (!apart) {
+                top.fail("bodies[" + std::to_string(a) + "]",
+                         "a body whose bounds " + formatVec(p.min) + " to " + formatVec(p.max) +
+                             " overlap those of bodies[" + std::to_string(b) + "]",
+                         "bodies apart at the start");
+            }
+        }
+    }
+    if (scene.bodies.empty()) {
+        return;
+    }
+    const std::string what = "given only with ";
+    if (scene.model != FluidModelName::DeltaSph) {
+        top.fail("bodies", top.written("bodies"),
+                 what + "\"fluid\": {\"model\": \"delta-sph\"} (bodies couple through its walls)");
+    }
+    if (scene.walls != WallModel::Particles) {
+        top.fail("bodies", top.written("bodies"),
+                 what + "\"walls\": {\"model\": \"particles\"} (bodies are boundary particles)");
+    }
+    if (!scene.solver.empty() && scene.solver != "wcsph") {
+        top.fail("bodies", top.written("bodies"),
+                 what + "the \"wcsph\" solver (not yet with \"" + scene.solver + "\")");
+    }
+    if (scene.periodic[0] || scene.periodic[1] || scene.periodic[2]) {
+        top.fail("bodies", top.written("bodies"),
+                 what + "walls all round (not yet in a container.periodic)");
+    }
+}
+
 std::optional<Integrator> integratorByName(const std::string& name) {
     if (name == "semi-implicit-euler") {
         return Integrator::SemiImplicitEuler;
@@ -481,9 +584,10 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
                       const std::string& defaultName) {
     const Json root = parseJson(jsonText, source);
 
-    FieldReader top(root, "", source,
-                    {"name", "description", "container", "blocks", "spheres", "obstacles", "fluid",
-                     "particles", "gravity", "time", "walls", "limits", "solver", "dfsph"});
+    FieldReader top(
+        root, "", source,
+        {"name", "description", "container", "blocks", "spheres", "obstacles", "bodies", "fluid",
+         "particles", "gravity", "time", "walls", "limits", "solver", "dfsph"});
     Scene scene;
     scene.sourcePath = source;
     scene.json = root.dump();
@@ -771,10 +875,19 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     sweeps.integer = true;
     settings.maxSweeps = int(dfsph.number("maxSweeps", sweeps, settings.maxSweeps));
     settings.cfl = dfsph.number("cfl", positiveUpTo(2), settings.cfl);
+    readBodies(top, scene);
     return scene;
 }
 
 }  // namespace
+
+double BodySpec::volume() const {
+    if (isSphere) {
+        return 4.0 / 3.0 * 3.14159265358979323846 * sphere.radius * sphere.radius * sphere.radius;
+    }
+    const Vec3d size = box.max - box.min;
+    return size.x * size.y * size.z;
+}
 
 const FluidPreset* fluidPreset(const std::string& name) {
     // Handbook values near 20 C (CRC Handbook of Chemistry and Physics; honey varies with water

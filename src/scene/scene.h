@@ -70,6 +70,34 @@ struct MovingWall {
     Vec3d velocity;
 };
 
+// A rigid body (issue 18; physics/rigid_body.h): "bodies": [{"box": {"min", "max"}} or
+// {"sphere": {"center", "radius"}}, then "density" (kg/m^3) or "mass" (kg) for a floating body,
+// or "motion" for a driven one; "velocity" and "angularVelocity" (rad/s) at the start].
+enum class BodyDrive { Floating, Oscillate, Rotate };
+struct BodySpec {
+    bool isSphere = false;
+    Box box;             // "box"
+    SphereShape sphere;  // "sphere"
+    double mass = 0;     // kg: "mass", or "density" times the volume; 0 for a driven body
+    Vec3d velocity, angularVelocity;
+    // "motion": {"oscillate": {"amplitude": [..] m, "period": s, "ramp": s}}: the centre moves by
+    // amplitude sin(2 pi t / period), the amplitude ramped up over the first `ramp` seconds; or
+    // {"rotate": {"rate": [..] rad/s}}: about the centre at that angular velocity.
+    BodyDrive drive = BodyDrive::Floating;
+    Vec3d amplitude;
+    double period = 1, ramp = 0;
+    Vec3d rate;
+    // The body's bounds at the start.
+    Box bounds() const {
+        if (!isSphere) {
+            return box;
+        }
+        const Vec3d r(sphere.radius, sphere.radius, sphere.radius);
+        return {sphere.center - r, sphere.center + r};
+    }
+    double volume() const;
+};
+
 // A named fluid: density (kg/m^3) and dynamic viscosity (Pa s) near 20 C.
 struct FluidPreset {
     const char* name;
@@ -94,6 +122,7 @@ struct Scene {
     std::vector<Box> obstacleBoxes;            // "obstacles": {"boxes": [{"min","max"}], ...
     std::vector<SphereShape> obstacleSpheres;  //   "spheres": [{"center","radius"}],
     std::vector<MeshObstacle> obstacleMeshes;  //   "meshes": [{"file","scale"?,"translate"?}]}
+    std::vector<BodySpec> bodies;              // "bodies": [...] (BodySpec)
 
     // "fluid": {...}
     std::string preset;  // "preset": "water" | "oil" | "honey" ("" none: water-like)

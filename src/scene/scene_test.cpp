@@ -201,6 +201,16 @@ TEST(Scene, ShippedScenesNameTheirFluidAndRunTheDefaultModel) {
         const Scene s = builtinScene(name);
         EXPECT_FALSE(s.preset.empty()) << name;
         EXPECT_EQ(s.model, FluidModelName::DeltaSph) << name;
+        if (!s.bodies.empty()) {  // rigid bodies couple through delta-SPH's walls only
+            try {
+                withFluidModel(s, "paper");
+                ADD_FAILURE() << name << " ran its bodies under the paper's model";
+            } catch (const SceneError& e) {
+                EXPECT_NE(std::string(e.what()).find("field 'bodies'"), std::string::npos)
+                    << e.what();
+            }
+            continue;
+        }
         const Scene paper = withFluidModel(s, "paper");
         EXPECT_EQ(paper.model, FluidModelName::Paper) << name;
         EXPECT_EQ(paper.name, s.name);
@@ -316,7 +326,7 @@ const BadCase kBadCases[] = {
     {"/spheres/0/radius", std::nullopt, "'spheres[0].radius'", "missing", "a number > 0"},
     // Unknown keys at every level, with the allowed ones.
     {"/gravty", "[0, -9.81, 0]", "'gravty'", "an unknown key (did you mean 'gravity'?)",
-     "one of: name, description, container, blocks, spheres, obstacles, fluid, particles"},
+     "one of: name, description, container, blocks, spheres, obstacles, bodies, fluid, particles"},
     {"/fluid/restDensty", "1000", "'fluid.restDensty'", "(did you mean 'restDensity'?)",
      "one of: preset, restDensity, viscosity, stiffness, eos, pressureForce"},
     {"/blocks/0/speed", "[0, 0, 0]", "'blocks[0].speed'", "an unknown key",

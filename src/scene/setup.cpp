@@ -182,6 +182,64 @@ HostParticles seedParticles(const Scene& scene, double spacing) {
     return particles;
 }
 
+namespace {
+
+// The rigid bodies' states and their boundary particles in each body's frame (centred on its
+// centre of mass, axes the box's): sampled as obstacles are, with Akinci's psi from each body's
+// own particles (capped at a full neighbourhood's volume, as the walls').
+RigidBodySetup rigidBodySetup(const Scene& scene, double d, double h, double particleMass) {
+    RigidBodySetup out;
+    const int layers = boundaryLayers(h, d, true);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        const BodySpec& spec = scene.bodies[i];
+        const Box bounds = spec.bounds();
+        const BoundaryParticles built =
+            buildBoundary(sampleBodySurface(spec, d, layers), bounds, h, scene.restDensity,
+                          particleMass / scene.restDensity, BoundaryKernel::Wendland);
+        const Vec3d centre = spec.isSphere ? spec.sphere.center : (bounds.min + bounds.max) * 0.5;
+        for (const Real4& p : built.pos) {
+            out.particles.push_back(
+                {Real(p.x - centre.x), Real(p.y - centre.y), Real(p.z - centre.z), p.w});
+            out.owner.push_back(int(i));
+        }
+        RigidBody body;
+        body.x = Vec3(centre);
+        body.home = body.x;
+        body.v = Vec3(spec.velocity);
+        body.omega = Vec3(spec.angularVelocity);
+        body.shape = spec.isSphere ? BodyShape::Sphere : BodyShape::Box;
+        const Vec3d half = (bounds.max - bounds.min) * 0.5;
+        body.halfSize = Vec3(half);
+        if (spec.drive == BodyDrive::Floating) {
+            const double m = spec.mass;
+            body.invMass = Real(1 / m);
+            Vec3d inertia;
+            if (spec.isSphere) {
+                const double i = 0.4 * m * spec.sphere.radius * spec.sphere.radius;
+                inertia = Vec3d(i, i, i);
+            } else {
+                const Vec3d size = half * 2.0;
+                inertia =
+                    Vec3d(size.y * size.y + size.z * size.z, size.x * size.x + size.z * size.z,
+                          size.x * size.x + size.y * size.y) *
+                    (m / 12);
+            }
+            body.invInertia = Vec3(Real(1 / inertia.x), Real(1 / inertia.y), Real(1 / inertia.z));
+        } else {
+            body.motion =
+                spec.drive == BodyDrive::Oscillate ? BodyMotion::Oscillating : BodyMotion::Rotating;
+            body.amplitude = Vec3(spec.amplitude);
+            body.period = Real(spec.period);
+            body.ramp = Real(spec.ramp);
+            body.rate = Vec3(spec.rate);
+        }
+        out.bodies.push_back(body);
+    }
+    return out;
+}
+
+}  // namespace
+
 SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, SetupReport* out) {
     SetupReport report;
     auto say = [&](const std::string& line) { report.lines.push_back(line); };
@@ -308,7 +366,24 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         initialSpeed = std::max(initialSpeed, length(s.velocity));
     }
     report.fluidHeight = std::max(0.0, top - floor);
-    report.expectedSpeed = std::sqrt(2.0 * g * report.fluidHeight) + initialSpeed;
+    // Bodies: a floating one falls from where it starts; each moves at its initial speed, a
+    // driven one at its motion's peak.
+    double bodyFall = 0;
+    for (const BodySpec& body : scene.bodies) {
+        const Box b = body.bounds();
+        const double reach = length(b.max - b.min) * 0.5;
+        if (body.drive == BodyDrive::Floating) {
+            bodyFall = std::max(bodyFall, dot((b.min + b.max) * 0.5, up) - reach - floor);
+            initialSpeed = std::max(initialSpeed,
+                                    length(body.velocity) + length(body.angularVelocity) * reach);
+        } else if (body.drive == BodyDrive::Oscillate) {
+            initialSpeed = std::max(initialSpeed, length(body.amplitude) * 2 * kPi / body.period);
+        } else {
+            initialSpeed = std::max(initialSpeed, length(body.rate) * reach);
+        }
+    }
+    report.expectedSpeed =
+        std::sqrt(2.0 * g * std::max(report.fluidHeight, bodyFall)) + initialSpeed;
     if (report.expectedSpeed <= 0) {
         report.expectedSpeed = 0.1;
     }
@@ -740,6 +815,18 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             " rho0 at the plane) and pushes by the particle's own pressure times that density's "
             "gradient, with a barrier of c^2 / d within d/2 of the plane; obstacles get the "
             "collision response only");
+    }
+    if (!scene.bodies.empty()) {
+        setup.bodies = rigidBodySetup(scene, d, h, mass);
+        std::size_t floating = 0;
+        for (const BodySpec& body : scene.bodies) {
+            floating += body.drive == BodyDrive::Floating ? 1 : 0;
+        }
+        say("bodies: " + std::to_string(scene.bodies.size()) + " (" + std::to_string(floating) +
+            " floating, " + std::to_string(scene.bodies.size() - floating) + " driven), " +
+            std::to_string(setup.bodies.particles.size()) +
+            " boundary particles on their surfaces, moved with them each step; the fluid's force "
+            "and torque on each are summed from its particles (Akinci et al. 2012)");
     }
     say(std::to_string(setup.particleCount()) + " particles, grid " +
         std::to_string(setup.grid.dims[0]) + " x " + std::to_string(setup.grid.dims[1]) + " x " +

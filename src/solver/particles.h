@@ -10,11 +10,19 @@
 
 namespace weir {
 
+// A rigid body's pose at a frame (physics/rigid_body.h), as frames.json records it.
+struct BodyPose {
+    Vec3d position;                        // centre of mass [m]
+    double orientation[4] = {0, 0, 0, 1};  // quaternion x, y, z, w: the body's frame to the world
+    Vec3d velocity, angularVelocity;       // [m/s], [rad/s]
+};
+
 struct HostParticles {
     std::vector<Real> x, y, z;     // position [m]
     std::vector<Real> vx, vy, vz;  // velocity [m/s]
     std::vector<Real> rho;         // density [kg/m^3]
     std::vector<Real> p;           // pressure [Pa]
+    std::vector<BodyPose> bodies;  // the rigid bodies at this frame, in the scene's order
 
     std::size_t size() const { return x.size(); }
     void resize(std::size_t n) {

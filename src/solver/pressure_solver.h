@@ -9,6 +9,7 @@
 #include "physics/collision.h"
 #include "physics/faults.h"
 #include "physics/particle_view.h"
+#include "physics/rigid_body.h"
 #include "physics/sph_params.h"
 #include "physics/time_step.h"
 #include "solver/neighbour_search.h"
@@ -30,6 +31,7 @@ struct StepContext {
     FaultRecord* fault;      // the first fault of the run (physics/faults.h)
     BoundaryView boundary;   // static boundary particles (empty: none)
     ObstacleView obstacles;  // obstacles of the simple collision response
+    RigidBodyView bodies{};  // rigid bodies among the boundary particles (count 0: none)
 };
 
 // What an iterative solver did since the last report (one frame's worth): per solve kind, the

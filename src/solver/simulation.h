@@ -18,6 +18,19 @@
 
 namespace weir {
 
+// A rigid body's pose (physics/rigid_body.h) as frames record it (solver/particles.h).
+inline BodyPose poseOf(const RigidBody& b) {
+    BodyPose pose;
+    pose.position = Vec3d(b.x);
+    pose.velocity = Vec3d(b.v);
+    pose.angularVelocity = Vec3d(b.omega);
+    pose.orientation[0] = b.q.x;
+    pose.orientation[1] = b.q.y;
+    pose.orientation[2] = b.q.z;
+    pose.orientation[3] = b.q.w;
+    return pose;
+}
+
 // A simulation's particle arrays where they live (device memory for CUDA), in the current
 // (cell) order, for zero-copy consumers: the viewer's CUDA-OpenGL interop, DLPack.
 struct ParticleArrays {
@@ -77,6 +90,8 @@ class Simulation {
     // What an iterative pressure solver did since the last call (none for WCSPH); a host round
     // trip, read once a frame.
     virtual SolverReport takeSolverReport() { return {}; }
+    // The rigid bodies (physics/rigid_body.h) as they are now; none by default.
+    virtual std::vector<RigidBody> rigidBodies() { return {}; }
 };
 
 // Creates a simulation on a backend with the setup's pressure solver; throws SimulationError if

@@ -14,6 +14,7 @@
 #include "grid/cell_id.h"
 #include "physics/boundary.h"
 #include "physics/collision.h"
+#include "physics/rigid_body.h"
 #include "physics/sph_params.h"
 #include "solver/particles.h"
 
@@ -54,6 +55,7 @@ struct SimulationSetup {
     std::vector<ObstacleBox> obstacleBoxes;
     std::vector<ObstacleSphere> obstacleSpheres;
     BoundaryParticles boundary;  // walls.model "particles": static wall particles and their grid
+    RigidBodySetup bodies;       // rigid bodies (their particles join the walls' each step)
     HostParticles particles;     // the initial particles, on the host; or:
     std::shared_ptr<const ParticleSeeder> seeder;  // ... placed by a seeder on the backend
     // Global ids of `particles` (a distributed run's share); empty: 0 .. n - 1.

@@ -15,6 +15,7 @@
 #include "solver/particle_store.h"
 #include "solver/periodic_ghosts.h"
 #include "solver/pressure_solver.h"
+#include "solver/rigid_bodies.h"
 #include "solver/simulation.h"
 #include "solver/step_driver.h"
 
@@ -50,6 +51,7 @@ class SphSimulation final : public Simulation {
         }
         store_.fitScratch(search_.reorders());
         uploadWalls(setup);
+        bodies_.upload(exec_, setup.boundary, setup.bodies);
         FaultRecord none{0, 0, 0, 0.0f, 0.0f};
         exec_.upload(fault_, &none, 1);
         // The first step's dt sees the initial speeds and gravity (the lattice starts in balance).
@@ -65,6 +67,9 @@ class SphSimulation final : public Simulation {
         }
         driver_.start(exec_, maxSpeed2, double(lengthSquared(params_.gravity)),
                       double(params_.timeStep));
+        if (bodies_.active()) {
+            bodies_.place(exec_, driver_.clock());  // the wall grid holds them from the start
+        }
     }
 
     // ---- Simulation ----
@@ -88,7 +93,15 @@ class SphSimulation final : public Simulation {
         StepContext<Exec> s = context();
         method_->runStage(s, stage);
     }
-    void download(HostParticles& out) override { store_.download(exec_, out, params_); }
+    void download(HostParticles& out) override {
+        store_.download(exec_, out, params_);
+        out.bodies.clear();
+        if (bodies_.active()) {
+            for (const RigidBody& b : bodies_.download(exec_)) {
+                out.bodies.push_back(poseOf(b));
+            }
+        }
+    }
     FaultRecord fault() override { return exec_.readOne(fault_, 0); }
     void synchronize() override { exec_.synchronize(); }
 
@@ -101,7 +114,7 @@ class SphSimulation final : public Simulation {
     std::string deviceName() const override { return exec_.deviceName(); }
     std::size_t bytesHeld() const override {
         return store_.bytesHeld() + search_.bytesHeld() + method_->bytesHeld() +
-               boundaryStart_.size() * sizeof(Index) +
+               bodies_.bytesHeld() + boundaryStart_.size() * sizeof(Index) +
                (boundaryPos_.size() + boundaryVelocity_.size()) * sizeof(Real4) +
                boundaryNear_.size();
     }
@@ -112,6 +125,7 @@ class SphSimulation final : public Simulation {
     long long stepCount() const override { return driver_.read(exec_).step; }
     double time() const override { return driver_.read(exec_).time; }
     SolverReport takeSolverReport() override { return method_->takeReport(exec_); }
+    std::vector<RigidBody> rigidBodies() override { return bodies_.download(exec_); }
     ParticleArrays particleArrays() override {
         return {store_.pos(), store_.vel(), store_.id(), store_.count(), Exec::isDevice};
     }
@@ -138,9 +152,11 @@ class SphSimulation final : public Simulation {
     }
 
    private:
-    // Periodic ghosts are counted on the host each step: no graph.
+    // Periodic ghosts are counted on the host each step: no graph. Bodies sum their loads by
+    // reductions launched per body: no graph either.
     bool capturable() const {
-        return search_.capturable() && method_->capturable() && !periodic_.active();
+        return search_.capturable() && method_->capturable() && !periodic_.active() &&
+               !bodies_.active();
     }
 
     // Ghost copies across the periodic faces for this step, and their removal after it, so that
@@ -159,21 +175,30 @@ class SphSimulation final : public Simulation {
     StepContext<Exec> context() {
         const ObstacleView obstacles{boxes_.data(), int(boxes_.size()), spheres_.data(),
                                      int(spheres_.size())};
-        return {exec_,           store_,        search_,        params_,
-                driver_.clock(), fault_.data(), boundaryView(), obstacles};
+        return {exec_,         store_,         search_,   params_,       driver_.clock(),
+                fault_.data(), boundaryView(), obstacles, bodies_.view()};
     }
 
     void stepNow() {
+        if (bodies_.active()) {
+            bodies_.place(exec_, driver_.clock());
+        }
         StepContext<Exec> s = context();
         addPeriodicGhosts();
         method_->step(s);
         dropPeriodicGhosts();
+        if (bodies_.active()) {
+            bodies_.advance(exec_, driver_.clock(), params_);
+        }
         if (exec_.timing) {
             exec_.collectTimes(times_);
         }
     }
 
     BoundaryView boundaryView() {
+        if (bodies_.active()) {
+            return bodies_.wallView();
+        }
         BoundaryView walls = boundary_;
         walls.pos = boundaryPos_.data();
         walls.velocity = boundaryVelocity_.size() > 0 ? boundaryVelocity_.data() : nullptr;
@@ -204,6 +229,7 @@ class SphSimulation final : public Simulation {
     StepDriver<Exec> driver_;
     std::unique_ptr<PressureSolver<Exec>> method_;
     PeriodicGhosts<Exec> periodic_;
+    RigidBodies<Exec> bodies_;
     Buffer<FaultRecord> fault_;
     Buffer<ObstacleBox> boxes_;
     Buffer<ObstacleSphere> spheres_;

@@ -127,6 +127,7 @@ class Wcsph final : public PressureSolver<Exec> {
             s.exec, s.store, [=] WEIR_HD() { beginStep(*clock, params); }, keptDensities(s));
         s.search.visit(s.store.pos(), s.store.count(), [&](const auto& nb) {
             deltaWalls(s, nb);
+            deltaBodyLoads(s, nb);
             deltaForces(s, nb);
             deltaDensities(s, nb);
         });
@@ -163,6 +164,22 @@ class Wcsph final : public PressureSolver<Exec> {
         Real4* state = wallState_.data();
         s.exec.forEach(walls, [=] WEIR_HD(Index b) { deltaWallAt(b, pv, nb, params, state); });
         s.exec.stageEnd("walls");
+    }
+
+    // The fluid's force and torque on each rigid body's boundary particles, from the same state
+    // the force pass reads (before it moves anything).
+    template <class Neighbours>
+    void deltaBodyLoads(Context& s, const Neighbours& nb) {
+        if (s.bodies.count == 0 || s.boundary.count == 0) {
+            return;
+        }
+        s.exec.stageBegin("bodies");
+        const ParticleView pv = view(s);
+        const SphParams params = s.params;
+        const RigidBodyView bodies = s.bodies;
+        s.exec.forEach(s.boundary.count,
+                       [=] WEIR_HD(Index b) { deltaBodyLoadAt(b, pv, nb, params, bodies); });
+        s.exec.stageEnd("bodies");
     }
 
     template <class Neighbours>

@@ -17,6 +17,7 @@
 #include "physics/integration.h"
 #include "physics/kernels.h"
 #include "physics/particle_view.h"
+#include "physics/rigid_body.h"
 #include "physics/sph_params.h"
 #include "physics/time_step.h"
 #include "physics/wall_weight.h"
@@ -200,6 +201,45 @@ WEIR_HD inline void deltaWallAt(Index b, const ParticleView& pv, const Neighbour
     const Vec3 xb = bv.pos[b].xyz();
     const Vec3 vWall = bv.velocity != nullptr ? bv.velocity[b].xyz() : Vec3();
     state[b] = extrapolateToWall(params, nb, xb, vWall, pv.pos, pv.vel, pv.pressureTerm);
+}
+
+// A body's boundary particle in wall slot b (physics/rigid_body.h): the fluid's force on it, the
+// opposite of what it adds to each fluid particle's momentum in the first pass
+// (addBoundaryMomentum, from the same state) times that particle's mass, and the force's torque
+// about the body's centre, into bodies.loads. Static wall particles are skipped.
+template <class Neighbours>
+WEIR_HD inline void deltaBodyLoadAt(Index b, const ParticleView& pv, const Neighbours& nb,
+                                    const SphParams& params, const RigidBodyView& bodies) {
+    const Index source = bodies.slotSource[b];
+    if (source < bodies.staticCount) {
+        return;
+    }
+    const Index j = source - bodies.staticCount;
+    const BoundaryView& bv = pv.boundary;
+    const Real4 pb = bv.pos[b];
+    const Vec3 xb = pb.xyz();
+    const Real4 state = bv.state[b];
+    const Real h2 = params.wendland.h2;
+    Vec3 momentum;  // what b adds to the fluid's momentum per unit fluid mass, summed
+    nb.forEachNearPoint(xb, [&](Index f) {
+        const Vec3 rVec = pv.position(f) - xb;
+        const Real r2 = lengthSquared(rVec);
+        if (r2 < h2 && r2 > Real(0)) {
+            const Real4 vf = pv.vel[f];
+            addBoundaryMomentum(params, rVec, r2, vf.w, pv.pressureTerm[f], vf.xyz(), pb.w, state,
+                                momentum);
+        }
+    });
+    const Vec3 force = momentum * (-params.mass);
+    const Vec3 torque = cross(xb - bodies.bodies[bodies.bodyOf[j]].x, force);
+    const Index n = bodies.particleCount;
+    Real* loads = bodies.loads;
+    loads[j] = force.x;
+    loads[n + j] = force.y;
+    loads[2 * n + j] = force.z;
+    loads[3 * n + j] = torque.x;
+    loads[4 * n + j] = torque.y;
+    loads[5 * n + j] = torque.z;
 }
 
 // First pass: the forces on i (pressure, the fluid's viscosity, artificial viscosity, walls,

@@ -1,0 +1,215 @@
+// Rigid bodies in the fluid on the CPU (issue 18): a light box floats at the draft Archimedes
+// gives it, a dense one sinks to the floor, the momentum the fluid gains is the momentum the body
+// loses, a driven piston follows its law and pushes the water, and bad bodies are refused with
+// the field named.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <string>
+
+#include "scene/scene.h"
+#include "scene/setup.h"
+#include "solver/solver_test_support.h"
+
+namespace weir {
+namespace {
+
+Scene bodyScene(const std::string& fields) {
+    return parseScene(R"({"name": "bodies_test", "fluid": {"preset": "water"}, )" + fields + "}",
+                      "<test bodies>");
+}
+
+// A tank 0.3 m long, 0.1 m across, with water 0.1 m deep, and a box 0.08 m long and high and
+// 0.06 m across of `density` whose bottom starts at `bottom`, in the middle (2 cm of water
+// between it and the side walls).
+Scene tankWithBox(double density, double bottom, double duration, const std::string& limits) {
+    const std::string lo = "[0.11, " + std::to_string(bottom) + ", 0.02]";
+    const std::string hi = "[0.19, " + std::to_string(bottom + 0.08) + ", 0.08]";
+    return bodyScene(R"(
+        "container": {"min": [0, 0, 0], "max": [0.3, 0.2, 0.1]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.3, 0.1, 0.1]}],
+        "bodies": [{"box": {"min": )" +
+                     lo + R"(, "max": )" + hi + R"(}, "density": )" + std::to_string(density) +
+                     R"(}],
+        "particles": {"spacing": 0.01}, )" +
+                     limits + R"(
+        "time": {"duration": )" +
+                     std::to_string(duration) + R"(, "frameRate": 20})");
+}
+
+// The water level away from the box: the mean height of the top particle (plus d/2) of the
+// columns of the lattice more than 2 cm from it along x.
+double waterLevel(const HostParticles& p, const RigidBody& box, double d) {
+    double sum = 0;
+    int columns = 0;
+    for (int cx = 0; cx < 30; ++cx) {
+        const double x = (cx + 0.5) * d;
+        if (std::abs(x - box.x.x) < box.halfSize.x + 0.02) {
+            continue;
+        }
+        for (int cz = 0; cz < 10; ++cz) {
+            const double z = (cz + 0.5) * d;
+            double top = -1;
+            for (std::size_t i = 0; i < p.size(); ++i) {
+                if (std::abs(p.x[i] - x) < 0.5 * d && std::abs(p.z[i] - z) < 0.5 * d) {
+                    top = std::max(top, double(p.y[i]));
+                }
+            }
+            if (top > 0) {
+                sum += top + 0.5 * d;
+                ++columns;
+            }
+        }
+    }
+    return sum / columns;
+}
+
+TEST(RigidBodies, LightBoxFloatsAtArchimedesDraft) {
+    // Density 500: Archimedes puts 500 / 998 of the box's 0.08 m under water at rest. It starts
+    // 8 mm higher and bobs; the draft is averaged over the last 0.6 s (the heave period is
+    // 0.4 s). The speed of sound follows a speed bound of 1 m/s (the box moves at 0.2 m/s).
+    const double d = 0.01;
+    const Scene scene =
+        tankWithBox(500, 0.1 - 0.0401 + 0.008, 1.6, R"("limits": {"maxSpeed": 1},)");
+    const double expected = 0.08 * 500 / scene.restDensity;
+    auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, nullptr));
+    ASSERT_EQ(sim->rigidBodies().size(), 1u);
+    HostParticles p;
+    double draftSum = 0;
+    int samples = 0;
+    for (int frame = 1; frame <= 32; ++frame) {
+        sim->advanceTo(0.05 * frame);
+        ASSERT_EQ(sim->fault().code, 0) << describeFault(sim->fault(), sim->params());
+        if (frame > 20) {
+            const RigidBody box = sim->rigidBodies()[0];
+            sim->download(p);
+            const double bottom = box.x.y - box.halfSize.y;
+            draftSum += waterLevel(p, box, d) - bottom;
+            ++samples;
+            EXPECT_GT(std::abs(box.q.w), 0.99) << "frame " << frame;  // it stays upright
+        }
+    }
+    const double draft = draftSum / samples;
+    std::cout << "floating box: draft " << draft << " m against Archimedes' " << expected << "\n";
+    EXPECT_NEAR(draft / expected, 1.0, 0.03);
+}
+
+TEST(RigidBodies, DenseBoxSinksToTheFloor) {
+    const Scene scene = tankWithBox(2000, 0.06, 0.6, "");
+    auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, nullptr));
+    sim->advanceTo(0.6);
+    ASSERT_EQ(sim->fault().code, 0) << describeFault(sim->fault(), sim->params());
+    const RigidBody box = sim->rigidBodies()[0];
+    // On the floor (its bottom within a spacing of it) and at rest.
+    EXPECT_LT(box.x.y - box.halfSize.y, 0.01);
+    EXPECT_LT(length(box.v), 0.05);
+}
+
+// Without gravity, a sphere shot through still water: every force between them is a pair of
+// opposite forces, so the fluid's momentum plus the sphere's stays what it was. Run for less time
+// than sound takes from the sphere to the walls and back (c = 4.8 m/s: ten times the sphere's 0.3
+// m/s plus its spin's 0.18), so the walls play no part.
+TEST(RigidBodies, MomentumLostByTheBodyIsGainedByTheFluid) {
+    const Scene scene = bodyScene(R"(
+        "container": {"min": [0, 0, 0], "max": [0.6, 0.6, 0.6]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.6, 0.6, 0.6]}],
+        "bodies": [{"sphere": {"center": [0.3, 0.3, 0.3], "radius": 0.06}, "density": 800,
+                    "velocity": [0.3, 0.05, 0], "angularVelocity": [0, 0, 3]}],
+        "gravity": [0, 0, 0],
+        "particles": {"spacing": 0.02},
+        "time": {"duration": 0.015, "frameRate": 200})");
+    const SimulationSetup setup = buildSetup(scene, {}, nullptr);
+    const double mass = double(setup.params.mass);
+    auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, setup);
+    const double bodyMass = scene.bodies[0].mass;
+    auto total = [&] {
+        HostParticles p;
+        sim->download(p);
+        Vec3d momentum;
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            momentum += Vec3d(p.vx[i], p.vy[i], p.vz[i]) * mass;
+        }
+        const RigidBody body = sim->rigidBodies()[0];
+        return std::pair{momentum, Vec3d(body.v) * bodyMass};
+    };
+    const auto [fluid0, body0] = total();
+    sim->advanceTo(0.015);
+    ASSERT_EQ(sim->fault().code, 0) << describeFault(sim->fault(), sim->params());
+    const auto [fluid1, body1] = total();
+    // The body has given the fluid some of its momentum (as the added mass builds up over the
+    // acoustic time, R / c = 12 ms; sound reaches the walls at 50 ms) ...
+    const double exchanged = length(body0 - body1);
+    EXPECT_GT(exchanged, 0.05 * length(body0));
+    // ... and the sum has kept it, to round-off of the float sums.
+    EXPECT_LT(length((fluid1 + body1) - (fluid0 + body0)), 1e-3 * exchanged)
+        << "fluid gained " << length(fluid1 - fluid0) << ", body lost " << exchanged;
+}
+
+// A piston at the end of a tank moves by its law and pushes the water ahead of it.
+TEST(RigidBodies, DrivenPistonFollowsItsLawAndPushesTheWater) {
+    const Scene scene = bodyScene(R"(
+        "container": {"min": [0, 0, 0], "max": [0.5, 0.2, 0.1]},
+        "blocks": [{"min": [0.05, 0, 0], "max": [0.5, 0.1, 0.1]}],
+        "bodies": [{"box": {"min": [0.01, 0.0, 0.0], "max": [0.04, 0.15, 0.1]},
+                    "motion": {"oscillate": {"amplitude": [0.02, 0, 0], "period": 0.8}}}],
+        "particles": {"spacing": 0.01},
+        "time": {"duration": 0.2, "frameRate": 20})");
+    auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, nullptr));
+    sim->advanceTo(0.2);
+    ASSERT_EQ(sim->fault().code, 0) << describeFault(sim->fault(), sim->params());
+    // The pose is that of the step's start (the last step's), within a step of the law.
+    const RigidBody piston = sim->rigidBodies()[0];
+    const double expected = 0.025 + 0.02 * std::sin(2 * M_PI * 0.2 / 0.8);
+    EXPECT_NEAR(piston.x.x, expected, 0.002);
+    HostParticles p;
+    sim->download(p);
+    double momentum = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        momentum += p.vx[i];
+    }
+    EXPECT_GT(momentum / double(p.size()), 0.005);  // the water moves away from it
+}
+
+TEST(RigidBodies, BadBodiesAreRefusedNamingTheField) {
+    const std::string tank = R"(
+        "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+        "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}], )";
+    auto fails = [&](const std::string& bodies, const std::string& expected) {
+        try {
+            bodyScene(tank + R"("bodies": )" + bodies);
+            ADD_FAILURE() << "accepted " << bodies;
+        } catch (const SceneError& e) {
+            EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+        }
+    };
+    fails(R"([{"box": {"min": [0.9, 0, 0], "max": [1.1, 0.1, 0.1]}, "density": 500}])",
+          "bodies[0]");
+    fails(R"([{"box": {"min": [0.9, 0, 0], "max": [1.1, 0.1, 0.1]}, "density": 500}])",
+          "sticks out");
+    fails(R"([{"sphere": {"center": [0.5, 0.5, 0.5], "radius": 0.1}, "mass": 0}])",
+          "bodies[0].mass");
+    fails(R"([{"sphere": {"center": [0.5, 0.5, 0.5], "radius": 0.1}}])", "bodies[0].density");
+    fails(R"([{"sphere": {"center": [0.5, 0.5, 0.5], "radius": 0.1}, "density": 1, "mass": 1}])",
+          "bodies[0].density");
+    fails(R"([{"sphere": {"center": [0.5, 0.5, 0.5], "radius": 0.1}, "density": 500},
+              {"box": {"min": [0.5, 0.5, 0.5], "max": [0.7, 0.7, 0.7]}, "density": 500}])",
+          "overlap those of bodies[0]");
+    fails(R"([{"density": 500}])", "neither a box nor a sphere");
+    fails(R"([{"box": {"min": [0.1, 0.1, 0.1], "max": [0.2, 0.2, 0.2]},
+               "motion": {"oscillate": {"amplitude": [0.1, 0, 0], "period": 1}}, "mass": 3}])",
+          "bodies[0].mass");
+    try {
+        parseScene(R"({"fluid": {"model": "paper"}, )" + tank +
+                       R"("bodies": [{"sphere": {"center": [0.5, 0.5, 0.5], "radius": 0.1},
+                                      "density": 500}]})",
+                   "<test bodies>");
+        ADD_FAILURE() << "the paper model took bodies";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("delta-sph"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace weir
