@@ -141,6 +141,9 @@ TEST(RigidBodies, MomentumLostByTheBodyIsGainedByTheFluid) {
     // The body has given the fluid some of its momentum (as the added mass builds up over the
     // acoustic time, R / c = 12 ms; sound reaches the walls at 50 ms) ...
     const double exchanged = length(body0 - body1);
+    std::cout << "momentum: the sphere passed on " << exchanged << " of its " << length(body0)
+              << " kg m/s; fluid plus sphere changed by "
+              << length((fluid1 + body1) - (fluid0 + body0)) << "\n";
     EXPECT_GT(exchanged, 0.05 * length(body0));
     // ... and the sum has kept it, to round-off of the float sums.
     EXPECT_LT(length((fluid1 + body1) - (fluid0 + body0)), 1e-3 * exchanged)
@@ -200,6 +203,19 @@ TEST(RigidBodies, BadBodiesAreRefusedNamingTheField) {
     fails(R"([{"box": {"min": [0.1, 0.1, 0.1], "max": [0.2, 0.2, 0.2]},
                "motion": {"oscillate": {"amplitude": [0.1, 0, 0], "period": 1}}, "mass": 3}])",
           "bodies[0].mass");
+    // Thinner than two spacings: no particles could stand for it (refused when set up, where the
+    // spacing is known).
+    const Scene tiny =
+        bodyScene(tank + R"("bodies": [{"sphere": {"center": [0.5, 0.8, 0.5], "radius": 0.02},
+                              "density": 500}])");
+    try {
+        buildSetup(tiny, {}, nullptr);
+        ADD_FAILURE() << "a body thinner than two spacings was set up";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("bodies[0]"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("two particle spacings"), std::string::npos)
+            << e.what();
+    }
     try {
         parseScene(R"({"fluid": {"model": "paper"}, )" + tank +
                        R"("bodies": [{"sphere": {"center": [0.5, 0.5, 0.5], "radius": 0.1},
