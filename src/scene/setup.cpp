@@ -193,17 +193,17 @@ RigidBodySetup rigidBodySetup(const Scene& scene, double d, double h, double par
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
         const BodySpec& spec = scene.bodies[i];
         const Box bounds = spec.bounds();
-        const Vec3d size = bounds.max - bounds.min;
-        if (std::min({size.x, size.y, size.z}) < 2 * d) {
-            throw SceneError(
-                "scene '" + scene.sourcePath + "': field 'bodies[" + std::to_string(i) +
-                "]' is a body " + fmt(std::min({size.x, size.y, size.z})) +
-                " m across at its thinnest, must be at least two particle spacings (2 x " + fmt(d) +
-                " m) across: make it larger or the particles finer");
-        }
         const BoundaryParticles built =
             buildBoundary(sampleBodySurface(spec, d, layers), bounds, h, scene.restDensity,
                           particleMass / scene.restDensity, BoundaryKernel::Wendland);
+        if (built.pos.empty()) {  // far smaller than a spacing: nothing to stand for it
+            const Vec3d size = bounds.max - bounds.min;
+            throw SceneError("scene '" + scene.sourcePath + "': field 'bodies[" +
+                             std::to_string(i) + "]' is a body " +
+                             fmt(std::max({size.x, size.y, size.z})) +
+                             " m across, too small for a boundary particle at spacing " + fmt(d) +
+                             " m: make it larger or the particles finer");
+        }
         const Vec3d centre = spec.isSphere ? spec.sphere.center : (bounds.min + bounds.max) * 0.5;
         for (const Real4& p : built.pos) {
             out.particles.push_back(

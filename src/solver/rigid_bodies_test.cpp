@@ -203,19 +203,6 @@ TEST(RigidBodies, BadBodiesAreRefusedNamingTheField) {
     fails(R"([{"box": {"min": [0.1, 0.1, 0.1], "max": [0.2, 0.2, 0.2]},
                "motion": {"oscillate": {"amplitude": [0.1, 0, 0], "period": 1}}, "mass": 3}])",
           "bodies[0].mass");
-    // Thinner than two spacings: no particles could stand for it (refused when set up, where the
-    // spacing is known).
-    const Scene tiny =
-        bodyScene(tank + R"("bodies": [{"sphere": {"center": [0.5, 0.8, 0.5], "radius": 0.02},
-                              "density": 500}])");
-    try {
-        buildSetup(tiny, {}, nullptr);
-        ADD_FAILURE() << "a body thinner than two spacings was set up";
-    } catch (const SceneError& e) {
-        EXPECT_NE(std::string(e.what()).find("bodies[0]"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("two particle spacings"), std::string::npos)
-            << e.what();
-    }
     try {
         parseScene(R"({"fluid": {"model": "paper"}, )" + tank +
                        R"("bodies": [{"sphere": {"center": [0.5, 0.5, 0.5], "radius": 0.1},
