@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 #include "render/bitmap_font.h"
 #include "render/gl.h"
@@ -655,23 +656,18 @@ void Renderer::draw(const OrbitCamera& camera, int width, int height) {
         glBindVertexArray(g.lines.vao);
         glDrawArrays(GL_LINES, 0, g.lines.count);
     }
-    if (g.solids.count > 0) {
-        glUseProgram(g.solidProgram);
-        setMatrix(g.solidProgram, "view", view);
-        setMatrix(g.solidProgram, "projection", projection);
-        setVec3(g.solidProgram, "baseColour", kObstacleColour);
-        setLighting(g.solidProgram, lighting);
-        glBindVertexArray(g.solids.vao);
-        glDrawArrays(GL_TRIANGLES, 0, g.solids.count);
-    }
-    if (g.bodies.count > 0) {
-        glUseProgram(g.solidProgram);
-        setMatrix(g.solidProgram, "view", view);
-        setMatrix(g.solidProgram, "projection", projection);
-        setVec3(g.solidProgram, "baseColour", kBodyColour);
-        setLighting(g.solidProgram, lighting);
-        glBindVertexArray(g.bodies.vao);
-        glDrawArrays(GL_TRIANGLES, 0, g.bodies.count);
+    // The obstacles (grey) and the rigid bodies (wood): lit solids of one colour each.
+    for (const auto& [mesh, colour] :
+         {std::pair<const Mesh*, Rgb>{&g.solids, kObstacleColour}, {&g.bodies, kBodyColour}}) {
+        if (mesh->count > 0) {
+            glUseProgram(g.solidProgram);
+            setMatrix(g.solidProgram, "view", view);
+            setMatrix(g.solidProgram, "projection", projection);
+            setVec3(g.solidProgram, "baseColour", colour);
+            setLighting(g.solidProgram, lighting);
+            glBindVertexArray(mesh->vao);
+            glDrawArrays(GL_TRIANGLES, 0, mesh->count);
+        }
     }
     if (mode_ == RenderMode::Surface && g.water.count > 0) {
         glUseProgram(g.waterProgram);

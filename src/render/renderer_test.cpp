@@ -257,6 +257,31 @@ TEST_F(OffscreenRender, ObstaclesAndContainerAreDrawn) {
     EXPECT_TRUE(edge) << "no container edge near pixel " << corner.x << "," << corner.y;
 }
 
+// A rigid body is drawn where its pose puts it, not where the scene started it: a long thin box
+// turned a quarter turn about z stands upright; the pixels above and below the centre are solid,
+// those beside it background.
+TEST_F(OffscreenRender, BodiesAreDrawnAtTheirPose) {
+    SceneGeometry geometry;
+    geometry.container = {{-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}};
+    BodySpec plank;
+    plank.box = {{-0.3, -0.03, -0.03}, {0.3, 0.03, 0.03}};  // lying along x at the start
+    geometry.bodies.push_back(plank);
+    renderer_->setGeometry(geometry);
+    renderer_->setShowLegend(false);
+    BodyPose pose;
+    const double half = 0.5 * 1.5707963267948966;  // a quarter turn about z
+    pose.orientation[2] = std::sin(half);
+    pose.orientation[3] = std::cos(half);
+    renderer_->setBodies(geometry.bodies, {pose});
+    OrbitCamera camera = frontCamera();
+    camera.distance = 3;
+    const Image image = renderer_->renderImage(camera, kWidth, kHeight);
+    const PixelPoint top = projectToPixel(camera, Vec3d(0, 0.2, 0), kWidth, kHeight);
+    const PixelPoint side = projectToPixel(camera, Vec3d(0.2, 0, 0), kWidth, kHeight);
+    EXPECT_GT(difference(image.pixel(int(top.x), int(top.y)), kBackground), 20);
+    EXPECT_LE(difference(image.pixel(int(side.x), int(side.y)), kBackground), 1);
+}
+
 TEST(PngImage, WritesAndReadsBackExactly) {
     Image image(37, 21);
     for (std::size_t i = 0; i < image.rgb.size(); ++i) {
