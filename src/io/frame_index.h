@@ -15,7 +15,7 @@ namespace weir {
 struct FrameEntry {
     int index = 0;
     double time = 0;
-    std::string path;  // the frame file, joined to the directory
+    std::string path;              // the frame file, joined to the directory
     std::vector<BodyPose> bodies;  // the rigid bodies' poses at this frame (empty: none)
 };
 
