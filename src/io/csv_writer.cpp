@@ -35,7 +35,7 @@ void writeCsv(const std::string& path, const HostParticles& particles) {
                 at = std::to_chars(at, at + kValueChars, (*columns[c])[i]).ptr;
             }
             *at++ = ',';
-            at = std::to_chars(at, at + kValueChars, i).ptr;
+            at = std::to_chars(at, at + kValueChars, particles.idOf(i)).ptr;
             *at++ = '\n';
             if (std::size_t(at - begin) >= kBlock) {
                 out.write(begin, at - begin);

@@ -499,31 +499,47 @@ void orderParticlesById(HostParticles& particles, const std::vector<std::int64_t
         malformed(path, std::to_string(ids.size()) + " particle ids for " + std::to_string(n) +
                             " particles");
     }
-    // rowOf[id]: the row holding that id; each id in 0 .. n - 1 exactly once.
-    constexpr std::size_t kNone = ~std::size_t(0);
-    std::vector<std::size_t> rowOf(n, kNone);
-    bool inOrder = true;
+    constexpr std::int64_t kMaxId = 2147483647;
+    bool dense = true;  // ids 0 .. n - 1 (a run without emitters and sinks)
     for (std::size_t row = 0; row < n; ++row) {
         const std::int64_t id = ids[row];
-        if (id < 0 || std::uint64_t(id) >= n) {
+        if (id < 0 || id > kMaxId) {
             malformed(path, "particle " + std::to_string(row) + " has id " + std::to_string(id) +
-                                " (allowed: 0.." + std::to_string(n - 1) + ", one per particle)");
+                                " (allowed: 0.." + std::to_string(kMaxId) + ", one per particle)");
         }
-        if (rowOf[std::size_t(id)] != kNone) {
-            malformed(path, "particles " + std::to_string(rowOf[std::size_t(id)]) + " and " +
-                                std::to_string(row) + " have the same id " + std::to_string(id) +
-                                " (ids must be unique)");
+        dense = dense && std::uint64_t(id) < n;
+    }
+    // order: the rows in increasing id order; two equal neighbours there are a repeated id.
+    std::vector<std::size_t> order(n);
+    for (std::size_t row = 0; row < n; ++row) {
+        order[row] = row;
+    }
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return ids[a] < ids[b] || (ids[a] == ids[b] && a < b); });
+    bool inOrder = true;
+    for (std::size_t k = 0; k < n; ++k) {
+        if (k > 0 && ids[order[k]] == ids[order[k - 1]]) {
+            malformed(path, "particles " + std::to_string(order[k - 1]) + " and " +
+                                std::to_string(order[k]) + " have the same id " +
+                                std::to_string(ids[order[k]]) + " (ids must be unique)");
         }
-        rowOf[std::size_t(id)] = row;
-        inOrder = inOrder && std::uint64_t(id) == row;
+        inOrder = inOrder && order[k] == k;
+    }
+    if (!dense) {  // ids with gaps (emitters and sinks): kept beside the particles
+        particles.id.resize(n);
+        for (std::size_t k = 0; k < n; ++k) {
+            particles.id[k] = Index(ids[order[k]]);
+        }
+    } else {
+        particles.id.clear();
     }
     if (inOrder) {
         return;
     }
     std::vector<Real> sorted(n);
     for (std::vector<Real>* column : mutableParticleColumns(particles)) {
-        for (std::size_t id = 0; id < n; ++id) {
-            sorted[id] = (*column)[rowOf[id]];
+        for (std::size_t k = 0; k < n; ++k) {
+            sorted[k] = (*column)[order[k]];
         }
         column->swap(sorted);
     }

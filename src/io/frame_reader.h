@@ -29,8 +29,9 @@ HostParticles readPly(const std::string& path);
 // trailing id column).
 HostParticles readCsv(const std::string& path);
 
-// Puts the particles in id order: ids[k] is the id of row k. Throws IoError naming the file, the
-// row and the id when the ids are not each of 0 .. n - 1 exactly once.
+// Puts the particles in id order: ids[k] is the id of row k. Ids that are not 0 .. n - 1 (a run
+// with emitters and sinks) go into particles.id. Throws IoError naming the file, the row and the
+// id when an id is negative, past int32, or not unique.
 void orderParticlesById(HostParticles& particles, const std::vector<std::int64_t>& ids,
                         const std::string& path);
 

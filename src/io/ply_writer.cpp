@@ -47,7 +47,7 @@ void writePly(const std::string& path, const HostParticles& particles) {
             }
             char* ids = buffer.data() + columns.size() * sizeof(Real);
             for (std::size_t j = 0; j < rows; ++j) {
-                const std::int32_t id = std::int32_t(start + j);
+                const std::int32_t id = std::int32_t(particles.idOf(start + j));
                 std::memcpy(ids + j * rowBytes, &id, sizeof id);
             }
             out.write(buffer.data(), std::streamsize(rows * rowBytes));

@@ -101,7 +101,7 @@ vdbp::PointDataGrid::Ptr pointsGrid(const HostParticles& particles, double spaci
     for (std::size_t i = 0; i < n; ++i) {
         positions[i] = positionOf(particles, i);
         velocities[i] = {float(particles.vx[i]), float(particles.vy[i]), float(particles.vz[i])};
-        ids[i] = std::int32_t(i);
+        ids[i] = std::int32_t(particles.idOf(i));
         density[i] = float(particles.rho[i]);
         pressure[i] = float(particles.p[i]);
     }

@@ -570,6 +570,148 @@ void readBodies(const FieldReader& top, Scene& scene) {
     }
 }
 
+// "emitters" and "sinks" (issue 18): after the fluid model and solver, which they need.
+void readFlow(const FieldReader& top, Scene& scene) {
+    top.forEach(
+        "emitters", {"disc", "rectangle", "direction", "speed", "rate", "start", "stop"},
+        [&](const FieldReader& r) {
+            EmitterSpec e;
+            const std::string shapes =
+                "exactly one of \"disc\": {\"center\": [..], \"radius\": r} or "
+                "\"rectangle\": {\"center\": [..], \"size\": [a, b]}";
+            if ((r.find("disc") != nullptr) == (r.find("rectangle") != nullptr)) {
+                r.fail(r.path(),
+                       r.find("disc") ? "both a disc and a rectangle"
+                                      : "neither a disc nor a rectangle",
+                       shapes);
+            }
+            e.direction = r.vec3("direction", std::nullopt, kVelocity);
+            const double norm = length(e.direction);
+            if (!(norm > 1e-12)) {
+                r.fail(r.pathOf("direction"), r.written("direction"),
+                       "a non-zero vector: the direction fluid comes in along");
+            }
+            e.direction = e.direction / norm;
+            if (r.find("disc") != nullptr) {
+                FieldReader d = r.object("disc", {"center", "radius"});
+                e.center = d.vec3("center");
+                e.radius = d.number("radius", kLength);
+            } else {
+                FieldReader q = r.object("rectangle", {"center", "size"});
+                e.isDisc = false;
+                e.center = q.vec3("center");
+                const Json* size = q.find("size");
+                const bool ok = size != nullptr && size->is_array() && size->size() == 2 &&
+                                (*size)[0].is_number() && (*size)[1].is_number() &&
+                                kLength.contains((*size)[0].get<double>()) &&
+                                kLength.contains((*size)[1].get<double>());
+                if (!ok) {
+                    q.fail(q.pathOf("size"), q.written("size"),
+                           "an array of 2 numbers [a, b], each " + kLength.text() +
+                               ": the rectangle's sides (m)");
+                }
+                e.width = (*size)[0].get<double>();
+                e.height = (*size)[1].get<double>();
+            }
+            if ((r.find("speed") != nullptr) == (r.find("rate") != nullptr)) {
+                r.fail(r.pathOf("speed"),
+                       r.find("speed") ? "given with a rate" : "missing, and so is rate",
+                       "exactly one of \"speed\" (m/s) or \"rate\" (m^3/s)");
+            }
+            e.speed = r.find("speed") != nullptr
+                          ? r.number("speed", positiveUpTo(1e3))
+                          : r.number("rate", positiveUpTo(1e6)) / e.area();
+            if (!(e.speed <= 1e3)) {
+                r.fail(r.pathOf("rate"), r.written("rate"),
+                       "at most 1000 m/s through the emitter's area of " + formatNumber(e.area()) +
+                           " m^2");
+            }
+            e.start = r.number("start", between(0, 1e9), 0.0);
+            if (r.find("stop") != nullptr) {
+                e.stop = r.number("stop", between(0, 1e9));
+                if (!(e.stop > e.start)) {
+                    r.fail(r.pathOf("stop"), r.written("stop"),
+                           "after \"start\" (" + formatNumber(e.start) + " s)");
+                }
+            }
+            // The emitting shape's bounds: a disc of radius R whose normal is n reaches
+            // R sqrt(1 - n_a^2) along axis a; a rectangle reaches its corners.
+            Box bounds{e.center, e.center};
+            if (e.isDisc) {
+                for (int a = 0; a < 3; ++a) {
+                    const double reach =
+                        e.radius * std::sqrt(std::max(0.0, 1 - e.direction[a] * e.direction[a]));
+                    bounds.min[a] -= reach;
+                    bounds.max[a] += reach;
+                }
+            } else {
+                Vec3d u, v;
+                e.planeAxes(u, v);
+                for (int c = 0; c < 4; ++c) {
+                    const Vec3d corner = e.center + u * (e.width * ((c & 1) ? 0.5 : -0.5)) +
+                                         v * (e.height * ((c & 2) ? 0.5 : -0.5));
+                    for (int a = 0; a < 3; ++a) {
+                        bounds.min[a] = std::min(bounds.min[a], corner[a]);
+                        bounds.max[a] = std::max(bounds.max[a], corner[a]);
+                    }
+                }
+            }
+            requireInside(r, bounds, scene.container,
+                          "an emitter reaching from " + formatVec(bounds.min) + " to " +
+                              formatVec(bounds.max));
+            scene.emitters.push_back(e);
+        },
+        64);
+    top.forEach(
+        "sinks", {"min", "max"},
+        [&](const FieldReader& r) {
+            const Box box = readBox(r);
+            bool overlaps = true;
+            for (int a = 0; a < 3; ++a) {
+                overlaps = overlaps && box.max[a] > scene.container.min[a] &&
+                           box.min[a] < scene.container.max[a];
+            }
+            if (!overlaps) {
+                r.fail(r.path(),
+                       "a sink from " + formatVec(box.min) + " to " + formatVec(box.max) +
+                           " outside the container",
+                       "a box that overlaps the container " + formatVec(scene.container.min) +
+                           " to " + formatVec(scene.container.max));
+            }
+            scene.sinks.push_back(box);
+        },
+        64);
+    for (std::size_t k = 0; k < scene.emitters.size(); ++k) {
+        for (std::size_t s = 0; s < scene.sinks.size(); ++s) {
+            const Vec3d c = scene.emitters[k].center;
+            const Box& b = scene.sinks[s];
+            if (c.x >= b.min.x && c.x <= b.max.x && c.y >= b.min.y && c.y <= b.max.y &&
+                c.z >= b.min.z && c.z <= b.max.z) {
+                top.fail("emitters[" + std::to_string(k) + "]",
+                         "an emitter centred at " + formatVec(c) + ", inside sinks[" +
+                             std::to_string(s) + "] (what it lets in would leave at once)",
+                         "an emitter outside every sink");
+            }
+        }
+    }
+    if (scene.emitters.empty() && scene.sinks.empty()) {
+        return;
+    }
+    const char* key = scene.emitters.empty() ? "sinks" : "emitters";
+    const std::string what = "given only with ";
+    if (scene.model != FluidModelName::DeltaSph) {
+        top.fail(key, top.written(key),
+                 what + "\"fluid\": {\"model\": \"delta-sph\"} (not yet with the paper's model)");
+    }
+    if (!scene.solver.empty() && scene.solver != "wcsph") {
+        top.fail(key, top.written(key),
+                 what + "the \"wcsph\" solver (not yet with \"" + scene.solver + "\")");
+    }
+    if (scene.periodic[0] || scene.periodic[1] || scene.periodic[2]) {
+        top.fail(key, top.written(key), what + "walls all round (not yet in a container.periodic)");
+    }
+}
+
 std::optional<Integrator> integratorByName(const std::string& name) {
     if (name == "semi-implicit-euler") {
         return Integrator::SemiImplicitEuler;
@@ -586,8 +728,9 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
 
     FieldReader top(
         root, "", source,
-        {"name", "description", "container", "blocks", "spheres", "obstacles", "bodies", "fluid",
-         "particles", "gravity", "time", "walls", "limits", "solver", "dfsph"});
+        {"name", "description", "container", "blocks", "spheres", "obstacles", "bodies",
+         "emitters", "sinks", "fluid", "particles", "gravity", "time", "walls", "limits", "solver",
+         "dfsph"});
     Scene scene;
     scene.sourcePath = source;
     scene.json = root.dump();
@@ -627,10 +770,10 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
                       "{center " + r.written("center") + ", radius " + r.written("radius") + "}");
         scene.spheres.push_back(fluid);
     });
-    if (scene.blocks.empty() && scene.spheres.empty()) {
+    if (scene.blocks.empty() && scene.spheres.empty() && top.find("emitters") == nullptr) {
         top.fail("blocks", top.written("blocks"),
                  "a non-empty array of fluid blocks unless 'spheres' (" + top.written("spheres") +
-                     ") holds fluid spheres: a scene needs fluid");
+                     ") holds fluid spheres or 'emitters' let fluid in: a scene needs fluid");
     }
 
     FieldReader obstacles = top.object("obstacles", {"boxes", "spheres", "meshes"});
@@ -876,10 +1019,21 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     settings.maxSweeps = int(dfsph.number("maxSweeps", sweeps, settings.maxSweeps));
     settings.cfl = dfsph.number("cfl", positiveUpTo(2), settings.cfl);
     readBodies(top, scene);
+    readFlow(top, scene);
     return scene;
 }
 
 }  // namespace
+
+double EmitterSpec::area() const { return isDisc ? kPi * radius * radius : width * height; }
+
+void EmitterSpec::planeAxes(Vec3d& u, Vec3d& v) const {
+    const Vec3d n = direction;
+    Vec3d ref = std::abs(n.x) > 0.999 ? Vec3d(0, 0, 1) : Vec3d(1, 0, 0);
+    u = ref - n * dot(ref, n);
+    u = u / length(u);
+    v = cross(n, u);
+}
 
 double BodySpec::volume() const {
     if (isSphere) {

@@ -99,6 +99,23 @@ struct BodySpec {
 };
 
 // A named fluid: density (kg/m^3) and dynamic viscosity (Pa s) near 20 C.
+// An emitter (issue 18; physics/emitter.h): "emitters": [{"disc": {"center", "radius"}} or
+// {"rectangle": {"center", "size": [a, b]}}, "direction": [..], "speed": m/s or "rate": m^3/s,
+// "start": s, "stop": s]. A rectangle's first size runs along the world x axis projected onto
+// its plane (z where the direction is along x), its second across both.
+struct EmitterSpec {
+    bool isDisc = true;
+    Vec3d center;
+    double radius = 0;             // a disc's
+    double width = 0, height = 0;  // a rectangle's "size"
+    Vec3d direction;               // unit
+    double speed = 0;              // m/s along the direction ("rate" / area when a rate is given)
+    double start = 0, stop = 1e30;  // s
+    double area() const;
+    // In-plane unit axes: the rectangle's first and second size run along them.
+    void planeAxes(Vec3d& u, Vec3d& v) const;
+};
+
 struct FluidPreset {
     const char* name;
     double density;
@@ -123,6 +140,8 @@ struct Scene {
     std::vector<SphereShape> obstacleSpheres;  //   "spheres": [{"center","radius"}],
     std::vector<MeshObstacle> obstacleMeshes;  //   "meshes": [{"file","scale"?,"translate"?}]}
     std::vector<BodySpec> bodies;              // "bodies": [...] (BodySpec)
+    std::vector<EmitterSpec> emitters;         // "emitters": [...] (EmitterSpec)
+    std::vector<Box> sinks;                    // "sinks": [{"min", "max"}]: fluid there leaves
 
     // "fluid": {...}
     std::string preset;  // "preset": "water" | "oil" | "honey" ("" none: water-like)

@@ -48,8 +48,59 @@ constexpr double kSplashKernelSum =
 // Steps per output frame at most: beyond, a time step is too small to run (and an int).
 constexpr double kMaxStepsPerFrame = 1e9;
 
+// An emitter's sites: a square lattice of spacing d over its disc (centred on a site) or its
+// rectangle (sites d/2 in from its edges), at least one.
+std::vector<Vec3d> emitterSites(const EmitterSpec& e, double d) {
+    Vec3d u, v;
+    e.planeAxes(u, v);
+    std::vector<Vec3d> sites;
+    if (e.isDisc) {
+        const int reach = int(std::min(1e4, std::floor(e.radius / d)));
+        for (int i = -reach; i <= reach; ++i) {
+            for (int j = -reach; j <= reach; ++j) {
+                if (double(i * i + j * j) * d * d <= e.radius * e.radius * (1 + 1e-9)) {
+                    sites.push_back(e.center + u * (i * d) + v * (j * d));
+                }
+            }
+        }
+    } else {
+        const int na = int(std::clamp(std::round(e.width / d), 1.0, 1e4));
+        const int nb = int(std::clamp(std::round(e.height / d), 1.0, 1e4));
+        for (int i = 0; i < na; ++i) {
+            for (int j = 0; j < nb; ++j) {
+                sites.push_back(e.center + u * ((i + 0.5 - 0.5 * na) * d) +
+                                v * ((j + 0.5 - 0.5 * nb) * d));
+            }
+        }
+    }
+    return sites;
+}
+
+// Seconds an emitter lets fluid in over a run of `duration` seconds.
+double emittingTime(const EmitterSpec& e, double duration) {
+    return std::max(0.0, std::min(e.stop, duration) - e.start);
+}
+
+// Layers an emitter lets in over a run (physics/emitter.h: one at its start, then one every
+// d / speed seconds).
+std::int64_t emitterLayers(const EmitterSpec& e, double d, double duration) {
+    if (e.start > duration) {
+        return 0;
+    }
+    return std::int64_t(std::min(1e15, std::floor(emittingTime(e, duration) * e.speed / d))) + 1;
+}
+
+// Particles the emitters let in over the scene's duration at spacing d.
+std::int64_t emittedCount(const Scene& scene, double d) {
+    double count = 0;
+    for (const EmitterSpec& e : scene.emitters) {
+        count += double(emitterSites(e, d).size()) * double(emitterLayers(e, d, scene.duration));
+    }
+    return std::int64_t(std::min(count, 1e15));
+}
+
 std::int64_t countSeeds(const Scene& scene, double d, std::int64_t limit) {
-    return sceneSeeds(scene, d, limit).count;
+    return sceneSeeds(scene, d, limit).count + emittedCount(scene, d);
 }
 
 double fluidVolume(const Scene& scene) {
@@ -60,6 +111,9 @@ double fluidVolume(const Scene& scene) {
     }
     for (const FluidSphere& s : scene.spheres) {
         v += 4.0 / 3.0 * kPi * std::pow(s.sphere.radius, 3);
+    }
+    for (const EmitterSpec& e : scene.emitters) {  // what they let in over the run
+        v += e.area() * e.speed * emittingTime(e, scene.duration);
     }
     return v;
 }
@@ -282,7 +336,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     const double d = report.spacing;
     SimulationSetup setup;
     SceneSeeds seeds = sceneSeeds(scene, d, budget.limit());
-    if (seeds.count == 0) {
+    if (seeds.count == 0 && scene.emitters.empty()) {
         throw SceneError(where + ": the fluid holds no particle at spacing " + fmt(d) +
                          " m; make the blocks or spheres larger or the spacing smaller");
     }
@@ -392,6 +446,12 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
     }
     report.expectedSpeed =
         std::sqrt(2.0 * g * std::max(report.fluidHeight, bodyFall)) + initialSpeed;
+    // Emitters: their speed, and the fall from each to the floor.
+    for (const EmitterSpec& e : scene.emitters) {
+        report.expectedSpeed =
+            std::max(report.expectedSpeed,
+                     std::sqrt(e.speed * e.speed + 2.0 * g * std::max(0.0, dot(e.center, up) - floor)));
+    }
     if (report.expectedSpeed <= 0) {
         report.expectedSpeed = 0.1;
     }
@@ -835,6 +895,48 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             std::to_string(setup.bodies.particles.size()) +
             " boundary particles on their surfaces, moved with them each step; the fluid's force "
             "and torque on each are summed from its particles (Akinci et al. 2012)");
+    }
+    if (!scene.emitters.empty() || !scene.sinks.empty()) {
+        FlowSetup& flow = setup.flow;
+        std::int64_t capacity = setup.particleCount();
+        for (std::size_t k = 0; k < scene.emitters.size(); ++k) {
+            const EmitterSpec& spec = scene.emitters[k];
+            Emitter e;
+            e.centre = Vec3(spec.center);
+            e.normal = Vec3(spec.direction);
+            e.speed = Real(spec.speed);
+            e.spacing = Real(d);
+            e.start = Real(spec.start);
+            e.stop = Real(std::min(spec.stop, 1e30));
+            e.density = Real(scene.restDensity);
+            e.firstSite = Index(flow.sites.size());
+            for (const Vec3d& site : emitterSites(spec, d)) {
+                flow.sites.push_back(Real4::from(Vec3(site)));
+            }
+            e.siteCount = Index(flow.sites.size()) - e.firstSite;
+            const std::int64_t layers = emitterLayers(spec, d, scene.duration);
+            capacity += std::int64_t(e.siteCount) * (layers + 1);
+            flow.emitters.push_back(e);
+            say("emitters[" + std::to_string(k) + "]: " + std::to_string(e.siteCount) +
+                " sites d apart, a layer every " + fmt(d / spec.speed) + " s at " +
+                fmt(spec.speed) + " m/s: " + fmt(double(e.siteCount) * spec.speed / d) +
+                " particles/s, " + fmt(double(e.siteCount) * d * d * spec.speed * 1000.0) +
+                " L/s, from " + fmt(spec.start) + " s" +
+                (spec.stop < 1e29 ? " to " + fmt(spec.stop) + " s" : std::string()));
+        }
+        for (const Box& b : scene.sinks) {
+            flow.sinks.push_back(Sink{Vec3(b.min), Vec3(b.max)});
+        }
+        if (capacity > budget.limit() || capacity >= std::int64_t(kMaxParticles)) {
+            throw budget.tooMany(where + " (the initial fluid and what the emitters let in over "
+                                         "the scene's duration of " + fmt(scene.duration) + " s)",
+                                 double(capacity), d, false);
+        }
+        flow.capacity = Index(capacity);
+        say("inflow and outflow: " + std::to_string(scene.emitters.size()) + " emitter(s), " +
+            std::to_string(scene.sinks.size()) + " sink(s); room for " + std::to_string(capacity) +
+            " particles at once (the initial ones and all that the emitters let in over " +
+            fmt(scene.duration) + " s), the count kept on the backend");
     }
     say(std::to_string(setup.particleCount()) + " particles, grid " +
         std::to_string(setup.grid.dims[0]) + " x " + std::to_string(setup.grid.dims[1]) + " x " +

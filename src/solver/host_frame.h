@@ -17,4 +17,9 @@ namespace weir {
 void scatterToHostFrame(const Index* ids, const Real4* pos, const Real4* vel, std::size_t n,
                         const SphParams& params, HostParticles& out);
 
+// The same for particles whose ids are unique but not 0 .. n - 1 (a run with emitters or sinks):
+// out gets them in increasing id order, their ids in out.id.
+void sortToHostFrame(const Index* ids, const Real4* pos, const Real4* vel, std::size_t n,
+                     const SphParams& params, HostParticles& out);
+
 }  // namespace weir

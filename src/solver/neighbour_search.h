@@ -86,10 +86,17 @@ class NeighbourSearch {
             const auto dropper = store.dropper();
             dense->build(exec, store.pos(), n, place, dropper, once);
             store.commitReorder(dropper.active);
+            if (store.holdsReservoir()) {  // the live particles are counted on the backend
+                store.parkPastKept(exec, dense->cellBound().data() + totalCells(dense->spec()));
+                exec.stageEnd("grid");
+                return;
+            }
             exec.stageEnd("grid");
             checkKept(exec, *dense, store.count(), dropper.active);
             return;
         }
+        WEIR_REQUIRE(!store.holdsReservoir(),
+                     "emitters and sinks need the dense cell table (--neighbours dense)");
         if (auto* grid = std::get_if<NeighbourGrid<Exec>>(&structure_)) {
             exec.stageBegin("grid");
             grid->build(exec, store.pos(), n);

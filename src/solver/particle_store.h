@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "core/config.h"
 #include "core/vec3.h"
+#include "physics/emitter.h"
 #include "physics/eos.h"
 #include "physics/particle_view.h"
 #include "solver/host_frame.h"
@@ -40,12 +41,14 @@ class ParticleStore {
         }
     };
     // Whether a reorder that can drop particles drops particle i: last step's ghosts and the
-    // particles marked removed, when any are held (a single run's never are).
+    // particles marked removed, when any are held (a single run's never are), and parked slots
+    // when the store holds a reservoir (physics/emitter.h).
     struct Dropper {
         const Real4* pos;
         bool active;
         WEIR_HD bool operator()(Index i) const {
-            return active && (pos[i].w == kGhostMark || pos[i].w == kRemovedMark);
+            return active && (pos[i].w == kGhostMark || pos[i].w == kRemovedMark ||
+                              pos[i].w == kParkedMark);
         }
     };
 
@@ -98,11 +101,26 @@ class ParticleStore {
     }
 
     // Copies the particles to the host in id order (ids 0 .. n - 1), with the pressure that the
-    // equation of state gives their density. From the GPU through host arrays kept for the next
+    // equation of state gives their density. With a reservoir, the `live` first slots (the live
+    // particles after a step), in id order with their ids in out.id (host_frame.h). From the GPU through host arrays kept for the next
     // frame (allocating and clearing 36 B a particle each frame cost as much as the copy); on
     // the CPU straight from the particle arrays.
-    void download(Exec& exec, HostParticles& out, const SphParams& params) {
-        const std::size_t n = std::size_t(n_);
+    void download(Exec& exec, HostParticles& out, const SphParams& params, Index live = -1) {
+        const std::size_t n = std::size_t(live >= 0 ? live : n_);
+        if (live >= 0) {
+            if constexpr (Exec::isDevice) {
+                hostId_.resize(n);
+                hostPos_.resize(n);
+                hostVel_.resize(n);
+                exec.download(id_, hostId_.data(), n);
+                exec.download(pos_, hostPos_.data(), n);
+                exec.download(vel_, hostVel_.data(), n);
+                sortToHostFrame(hostId_.data(), hostPos_.data(), hostVel_.data(), n, params, out);
+            } else {
+                sortToHostFrame(id_.data(), pos_.data(), vel_.data(), n, params, out);
+            }
+            return;
+        }
         if constexpr (Exec::isDevice) {
             hostId_.resize(n);
             hostPos_.resize(n);
@@ -122,7 +140,48 @@ class ParticleStore {
         return {pos_.data(),       vel_.data(),       id_.data(),
                 sortedPos_.data(), sortedVel_.data(), sortedId_.data()};
     }
-    Dropper dropper() const { return {pos_.data(), dropPending_ > 0 || heldGhosts_ > 0}; }
+    Dropper dropper() const {
+        return {pos_.data(), dropPending_ > 0 || heldGhosts_ > 0 || live_ != nullptr};
+    }
+
+    // ---- A reservoir of slots for a count that changes on the backend (physics/emitter.h) ----
+
+    // Grows the store to `capacity` slots, the ones past the particles parked; `live`: the
+    // backend's live count, which reorders keep (the particles are then slots [0, *live)).
+    void holdReservoir(Exec& exec, Index capacity, Index* live) {
+        const Index n = n_;
+        if (capacity > n) {
+            growKeeping(exec, pos_, std::size_t(capacity));
+            growKeeping(exec, vel_, std::size_t(capacity));
+            growKeeping(exec, id_, std::size_t(capacity));
+            Real4 *pos = pos_.data(), *vel = vel_.data();
+            Index* id = id_.data();
+            exec.forEach(capacity - n, [=] WEIR_HD(Index k) {
+                park(pos[n + k], vel[n + k]);
+                id[n + k] = -1;
+            });
+            n_ = capacity;
+        }
+        live_ = live;
+        fitScratch(reorders_);
+    }
+    bool holdsReservoir() const { return live_ != nullptr; }
+    // After a reorder that dropped the parked slots and kept `*kept` particles: the slots past
+    // them are parked, and the live count is *kept.
+    void parkPastKept(Exec& exec, const Index* kept) {
+        Real4 *pos = pos_.data(), *vel = vel_.data();
+        Index *live = live_, *id = id_.data();
+        exec.forEach(n_, [=] WEIR_HD(Index k) {
+            const Index keptCount = *kept;
+            if (k == 0) {
+                *live = keptCount;
+            }
+            if (k >= keptCount) {
+                park(pos[k], vel[k]);
+                id[k] = -1;
+            }
+        });
+    }
 
     // After the placer has run for every kept particle: the scratch becomes the particles.
     // dropped: whether the reorder dropped what dropper() named (those are then gone).
@@ -295,6 +354,7 @@ class ParticleStore {
     Index heldGhosts_ = 0;      // ghosts of this step (mark 1)
     Index arrivingGhosts_ = 0;  // ghosts appended for the next step (mark 2)
     Index dropPending_ = 0;     // owned particles marked removed (mark 3)
+    Index* live_ = nullptr;     // the backend's live count, with a reservoir (holdReservoir)
     Buffer<Real4> pos_, vel_, sortedPos_, sortedVel_;
     Buffer<Index> id_, sortedId_;
     Buffer<Index> flags_;                // selection flags and their sums

@@ -22,12 +22,20 @@ struct HostParticles {
     std::vector<Real> vx, vy, vz;  // velocity [m/s]
     std::vector<Real> rho;         // density [kg/m^3]
     std::vector<Real> p;           // pressure [Pa]
+    // Each particle's id, in increasing order, where the ids are not 0 .. n - 1 (a run with
+    // emitters or sinks: physics/emitter.h); empty: particle k has id k.
+    std::vector<Index> id;
     std::vector<BodyPose> bodies;  // the rigid bodies at this frame, in the scene's order
 
     std::size_t size() const { return x.size(); }
+    // Particle k's id.
+    Index idOf(std::size_t k) const { return id.empty() ? Index(k) : id[k]; }
     void resize(std::size_t n) {
         for (auto* a : {&x, &y, &z, &vx, &vy, &vz, &rho, &p}) {
             a->resize(n);
+        }
+        if (!id.empty()) {
+            id.resize(n);
         }
     }
     void push(const Vec3d& pos, const Vec3d& vel) {

@@ -92,6 +92,9 @@ class Simulation {
     virtual SolverReport takeSolverReport() { return {}; }
     // The rigid bodies (physics/rigid_body.h) as they are now; none by default.
     virtual std::vector<RigidBody> rigidBodies() { return {}; }
+    // What the emitters and sinks (physics/emitter.h) have done since the start: a host round
+    // trip; all zero without them.
+    virtual FlowCounters flowCounters() { return {}; }
 };
 
 // Creates a simulation on a backend with the setup's pressure solver; throws SimulationError if

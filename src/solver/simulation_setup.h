@@ -3,6 +3,7 @@
 // a seeder on the simulation's own backend (a billion particles are seeded on the GPU itself).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -14,6 +15,7 @@
 #include "grid/cell_id.h"
 #include "physics/boundary.h"
 #include "physics/collision.h"
+#include "physics/emitter.h"
 #include "physics/rigid_body.h"
 #include "physics/sph_params.h"
 #include "solver/particles.h"
@@ -56,6 +58,7 @@ struct SimulationSetup {
     std::vector<ObstacleSphere> obstacleSpheres;
     BoundaryParticles boundary;  // walls.model "particles": static wall particles and their grid
     RigidBodySetup bodies;       // rigid bodies (their particles join the walls' each step)
+    FlowSetup flow;              // emitters and sinks (the particle count changes on the backend)
     HostParticles particles;     // the initial particles, on the host; or:
     std::shared_ptr<const ParticleSeeder> seeder;  // ... placed by a seeder on the backend
     // Global ids of `particles` (a distributed run's share); empty: 0 .. n - 1.
@@ -65,10 +68,15 @@ struct SimulationSetup {
         return particles.size() > 0 ? std::int64_t(particles.size())
                                     : (seeder ? seeder->count() : 0);
     }
-    // Particles this process will hold: all of them, or its share's.
+    // Particle slots: the particles, or the reservoir of a run with emitters or sinks.
+    std::int64_t slotCount() const {
+        return std::max<std::int64_t>(particleCount(), flow.active() ? flow.capacity : 0);
+    }
+    // Particle slots this process will hold: all of them, or its share's.
     std::int64_t countHere() const {
-        return particles.size() > 0 ? std::int64_t(particles.size())
-                                    : (seeder ? seeder->expectedCount() : 0);
+        const std::int64_t held = particles.size() > 0 ? std::int64_t(particles.size())
+                                                       : (seeder ? seeder->expectedCount() : 0);
+        return std::max<std::int64_t>(held, flow.active() ? flow.capacity : 0);
     }
 };
 

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/check.h"
+#include "solver/inflow_outflow.h"
 #include "solver/method_registry.h"
 #include "solver/neighbour_search.h"
 #include "solver/particle_store.h"
@@ -31,7 +32,7 @@ class SphSimulation final : public Simulation {
     SphSimulation(NeighbourMode mode, SimulationSetup setup)
         : params_(setup.params),
           methodName_(checkPressureSolver(setup.method)),
-          search_(mode, periodicGrid(setup.grid, setup.params), setup.particleCount(),
+          search_(mode, periodicGrid(setup.grid, setup.params), setup.slotCount(),
                   setup.params.kernel.h),
           method_(makePressureSolver<Exec>(methodName_, setup.params)),
           periodic_(setup.params) {
@@ -50,6 +51,11 @@ class SphSimulation final : public Simulation {
             store_.upload(exec_, setup.particles, setup.particleIds);
         }
         store_.fitScratch(search_.reorders());
+        if (setup.flow.active()) {
+            WEIR_REQUIRE(mode == NeighbourMode::Dense && !periodic_.active(),
+                         "emitters and sinks run with the dense cell table and no periodic axis");
+            flow_.upload(exec_, setup.flow, store_);
+        }
         uploadWalls(setup);
         bodies_.upload(exec_, setup.boundary, setup.bodies);
         FaultRecord none{0, 0, 0, 0.0f, 0.0f};
@@ -64,6 +70,9 @@ class SphSimulation final : public Simulation {
         }
         if (setup.seeder) {
             maxSpeed2 = std::max(maxSpeed2, setup.seeder->maxSpeed() * setup.seeder->maxSpeed());
+        }
+        for (const Emitter& e : setup.flow.emitters) {
+            maxSpeed2 = std::max(maxSpeed2, double(e.speed) * double(e.speed));
         }
         driver_.start(exec_, maxSpeed2, double(lengthSquared(params_.gravity)),
                       double(params_.timeStep));
@@ -94,7 +103,7 @@ class SphSimulation final : public Simulation {
         method_->runStage(s, stage);
     }
     void download(HostParticles& out) override {
-        store_.download(exec_, out, params_);
+        store_.download(exec_, out, params_, flow_.active() ? flow_.counters(exec_).live : -1);
         out.bodies.clear();
         if (bodies_.active()) {
             for (const RigidBody& b : bodies_.download(exec_)) {
@@ -114,20 +123,26 @@ class SphSimulation final : public Simulation {
     std::string deviceName() const override { return exec_.deviceName(); }
     std::size_t bytesHeld() const override {
         return store_.bytesHeld() + search_.bytesHeld() + method_->bytesHeld() +
-               bodies_.bytesHeld() + boundaryStart_.size() * sizeof(Index) +
+               bodies_.bytesHeld() + flow_.bytesHeld() + boundaryStart_.size() * sizeof(Index) +
                (boundaryPos_.size() + boundaryVelocity_.size()) * sizeof(Real4) +
                boundaryNear_.size();
     }
     Index occupiedCells() const override { return search_.occupiedCells(); }
     const SphParams& params() const override { return params_; }
     std::string method() const override { return methodName_; }
-    Index particleCount() const override { return store_.count(); }
+    Index particleCount() const override {
+        return flow_.active() ? flow_.counters(exec_).live : store_.count();
+    }
     long long stepCount() const override { return driver_.read(exec_).step; }
     double time() const override { return driver_.read(exec_).time; }
     SolverReport takeSolverReport() override { return method_->takeReport(exec_); }
     std::vector<RigidBody> rigidBodies() override { return bodies_.download(exec_); }
+    FlowCounters flowCounters() override {
+        return flow_.active() ? flow_.counters(exec_) : FlowCounters{};
+    }
+    // With emitters or sinks, the live particles: the first slots after a step.
     ParticleArrays particleArrays() override {
-        return {store_.pos(), store_.vel(), store_.id(), store_.count(), Exec::isDevice};
+        return {store_.pos(), store_.vel(), store_.id(), particleCount(), Exec::isDevice};
     }
 
     // ---- The parts, for cluster/'s rank of a distributed run ----
@@ -180,6 +195,9 @@ class SphSimulation final : public Simulation {
     }
 
     void stepNow() {
+        if (flow_.active()) {
+            flow_.apply(exec_, store_, driver_.clock());
+        }
         if (bodies_.active()) {
             bodies_.place(exec_, driver_.clock());
         }
@@ -230,6 +248,7 @@ class SphSimulation final : public Simulation {
     std::unique_ptr<PressureSolver<Exec>> method_;
     PeriodicGhosts<Exec> periodic_;
     RigidBodies<Exec> bodies_;
+    InflowOutflow<Exec> flow_;
     Buffer<FaultRecord> fault_;
     Buffer<ObstacleBox> boxes_;
     Buffer<ObstacleSphere> spheres_;
