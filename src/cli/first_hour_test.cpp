@@ -309,7 +309,8 @@ TEST_F(Cli, UnknownSceneNamesListTheBuiltInScenesWithADidYouMean) {
     EXPECT_TRUE(contains(slip.output, "did you mean 'dam_break'?"));
     EXPECT_TRUE(contains(slip.output,
                          "dam_break, dam_break_obstacle, double_dam_break, "
-                         "drop_into_pool, floating_boxes, geyser, piston_wave_maker, "
+                         "drop_into_pool, floating_boxes, geyser, hose_filling_glass, "
+                         "piston_wave_maker, "
                          "splash_on_sphere, tsunami_on_step, viscous_pour, wave_tank"));
 
 #if defined(WEIR_HAS_RENDER)  // without rendering, `weir view` stops before reading a scene

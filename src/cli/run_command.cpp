@@ -143,6 +143,11 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         }
         const bool wideCellIds = mode == NeighbourMode::Grid && needsWideCellIds(setup.grid);
         const std::string cellIds = cellIdDescription(setup.grid);
+        const bool flows = setup.flow.active();
+        const std::string room =
+            flows ? " (room for " + std::to_string(setup.flow.capacity) +
+                        ": emitters and sinks change the count)"
+                  : "";
         std::unique_ptr<Simulation> sim;
         DistributedSimulation* cluster = nullptr;
         if (launchedByMpi()) {
@@ -153,7 +158,8 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         } else {
             sim = makeSimulation(backend, mode, std::move(setup));
         }
-        log << "weir: " << sim->particleCount() << " particles on " << backendName(backend) << " ("
+        log << "weir: " << sim->particleCount() << " particles" << room << " on "
+            << backendName(backend) << " ("
             << sim->deviceName() << "), " << neighbourModeName(mode) << " neighbours, dt "
             << rounded(1000 * double(sim->params().timeStep), 3) << " ms"
             << (sim->params().adaptiveTimeStep ? " (adaptive)" : "") << ", about "
@@ -258,6 +264,7 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         // Frame 0 counts like every other: with boundary particles (or a scene whose fluid meets
         // an obstacle) the initial state is compressed already, and the report must say so.
         DensityDeviation worst;
+        bool warnedRefused = false;
         if (root && downloads) {
             worst = densityDeviation(*host, sim->params().restDensity, false);
             handOver(0, host);
@@ -315,8 +322,23 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
                     .count();
             worst.max = std::max(worst.max, deviation.max);
             worst.mean = std::max(worst.mean, deviation.mean);
+            std::string flowNote;
+            if (flows) {
+                const FlowCounters counts = sim->flowCounters();
+                flowNote = "  " + std::to_string(host->size()) + " particles (" +
+                           std::to_string(counts.emitted) + " in, " +
+                           std::to_string(counts.removed) + " out)";
+                if (counts.refused > 0 && !warnedRefused) {
+                    warnedRefused = true;
+                    log << "weir: warning: the emitters found no room for " << counts.refused
+                        << " particles: the reservoir (sized for the scene's time.duration) is "
+                           "full; from now on only what the sinks free comes in. Raise "
+                           "time.duration to make room\n";
+                }
+            }
             progress.setNote(deviation.text() +
-                             solverNote(sim->takeSolverReport(), report.frameInterval, *host));
+                             solverNote(sim->takeSolverReport(), report.frameInterval, *host) +
+                             flowNote);
             handOver(frame, host);
             if (observer != nullptr) {
                 observer->frame(number(frame), time, *host);

@@ -145,6 +145,12 @@ DistributedSimulation::DistributedSimulation(Communicator& comm, Backend backend
             "rigid bodies (scene field \"bodies\") do not run across ranks yet (a body's loads "
             "would be summed over every rank): run the scene on one GPU or the CPU without mpirun");
     }
+    if (setup.flow.active()) {
+        throw SimulationError(
+            "emitters and sinks (scene fields \"emitters\", \"sinks\") do not run across ranks "
+            "yet (the live count and fresh ids are kept on one backend): run the scene on one GPU "
+            "or the CPU without mpirun");
+    }
     total_ = setup.particleCount();
     const int axis = setup.params.periodicAxes != 0
                          ? slabAxis(setup.params)

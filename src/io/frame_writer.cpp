@@ -58,6 +58,9 @@ void FrameWriter::write(int frameIndex, double time, const HostParticles& partic
         }
         bodies_[frameIndex] = std::move(poses);
     }
+    if (!particles.id.empty()) {  // a count that changes (emitters and sinks)
+        counts_[frameIndex] = particles.size();
+    }
     if (pvd_) {
         pvd_->add(time, file);
     }
@@ -70,6 +73,9 @@ void FrameWriter::writeIndex() const {
         frames.push_back({{"index", index}, {"time", entry.first}, {"file", entry.second}});
         if (const auto poses = bodies_.find(index); poses != bodies_.end()) {
             frames.back()["bodies"] = poses->second;
+        }
+        if (const auto count = counts_.find(index); count != counts_.end()) {
+            frames.back()["particles"] = count->second;
         }
     }
     nlohmann::json index = record_;

@@ -19,7 +19,8 @@ namespace weir {
 //    ...]}
 // and, for a scene with rigid bodies, each frame's "bodies": [{"position": [x, y, z],
 // "orientation": [qx, qy, qz, qw], "velocity": [..], "angularVelocity": [..]}, ...] in the
-// scene's order (their shapes are in the recorded scene).
+// scene's order (their shapes are in the recorded scene); for a run with emitters or sinks,
+// whose particle count changes, each frame's "particles": its count
 // (frames sorted by index, file names relative to dir), and for vtu <dir>/<baseName>.pvd.
 class FrameWriter {
    public:
@@ -54,6 +55,7 @@ class FrameWriter {
     std::optional<PvdCollection> pvd_;                      // vtu only
     std::map<int, std::pair<double, std::string>> frames_;  // index -> (time, file name)
     std::map<int, nlohmann::json> bodies_;                  // index -> its bodies' poses
+    std::map<int, std::size_t> counts_;  // index -> its particle count, where the count changes
     nlohmann::json record_ = nlohmann::json::object();
     double spacing_ = 0, voxelSize_ = 0;
 };

