@@ -144,10 +144,9 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
         const bool wideCellIds = mode == NeighbourMode::Grid && needsWideCellIds(setup.grid);
         const std::string cellIds = cellIdDescription(setup.grid);
         const bool flows = setup.flow.active();
-        const std::string room =
-            flows ? " (room for " + std::to_string(setup.flow.capacity) +
-                        ": emitters and sinks change the count)"
-                  : "";
+        const std::string room = flows ? " (room for " + std::to_string(setup.flow.capacity) +
+                                             ": emitters and sinks change the count)"
+                                       : "";
         std::unique_ptr<Simulation> sim;
         DistributedSimulation* cluster = nullptr;
         if (launchedByMpi()) {
@@ -159,9 +158,8 @@ int runCommand(const RunOptions& options, RunObserver* observer) {
             sim = makeSimulation(backend, mode, std::move(setup));
         }
         log << "weir: " << sim->particleCount() << " particles" << room << " on "
-            << backendName(backend) << " ("
-            << sim->deviceName() << "), " << neighbourModeName(mode) << " neighbours, dt "
-            << rounded(1000 * double(sim->params().timeStep), 3) << " ms"
+            << backendName(backend) << " (" << sim->deviceName() << "), " << neighbourModeName(mode)
+            << " neighbours, dt " << rounded(1000 * double(sim->params().timeStep), 3) << " ms"
             << (sim->params().adaptiveTimeStep ? " (adaptive)" : "") << ", about "
             << report.stepsPerFrame << " steps per frame, " << frames << " frames to " << outDir
             << "/\n";

@@ -514,8 +514,9 @@ void orderParticlesById(HostParticles& particles, const std::vector<std::int64_t
     for (std::size_t row = 0; row < n; ++row) {
         order[row] = row;
     }
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return ids[a] < ids[b] || (ids[a] == ids[b] && a < b); });
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return ids[a] < ids[b] || (ids[a] == ids[b] && a < b);
+    });
     bool inOrder = true;
     for (std::size_t k = 0; k < n; ++k) {
         if (k > 0 && ids[order[k]] == ids[order[k - 1]]) {

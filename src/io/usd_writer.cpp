@@ -241,7 +241,7 @@ void writeUsdStage(const std::string& path, const std::vector<UsdFrame>& frames,
         const int t = frame.number;
         const HostParticles p = readFrameFile(frame.particlesPath);
         const std::size_t n = p.size();
-        ids.append(sample(t, n, [](std::size_t i) { return std::to_string(i); }));
+        ids.append(sample(t, n, [&p](std::size_t i) { return std::to_string(p.idOf(i)); }));
         points.append(sample(t, n, [&](std::size_t i) { return vec(p.x[i], p.y[i], p.z[i]); }));
         velocities.append(
             sample(t, n, [&](std::size_t i) { return vec(p.vx[i], p.vy[i], p.vz[i]); }));

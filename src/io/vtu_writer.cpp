@@ -74,9 +74,8 @@ void writeVtu(const std::string& path, const HostParticles& particles, double ti
     for (const FieldDesc& field : particleFields(particles)) {
         pointData.push_back(realArray<Real>(field.name, field.arrays, n));
     }
-    pointData.push_back(
-        generatedArray<std::int32_t>(kParticleIdName, n,
-                                     [&particles](std::size_t i) { return particles.idOf(i); }));
+    pointData.push_back(generatedArray<std::int32_t>(
+        kParticleIdName, n, [&particles](std::size_t i) { return particles.idOf(i); }));
     const AppendedArray points =
         realArray<Real>("Points", {&particles.x, &particles.y, &particles.z}, n);
     // One VTK_VERTEX (type 1) cell per particle: connectivity i, end offset i + 1.

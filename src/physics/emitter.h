@@ -25,12 +25,12 @@
 namespace weir {
 
 struct Emitter {
-    Vec3 centre;         // the centre of the emitting disc or rectangle [m]
-    Vec3 normal;         // unit: the direction fluid comes in along
-    Real speed = 0;      // [m/s] along the normal
-    Real spacing = 0;    // the particle spacing d: between sites and between layers [m]
-    Real start = 0;      // [s] the first layer is let in at `start`
-    Real stop = 0;       // [s] no layer is due after `stop`
+    Vec3 centre;          // the centre of the emitting disc or rectangle [m]
+    Vec3 normal;          // unit: the direction fluid comes in along
+    Real speed = 0;       // [m/s] along the normal
+    Real spacing = 0;     // the particle spacing d: between sites and between layers [m]
+    Real start = 0;       // [s] the first layer is let in at `start`
+    Real stop = 0;        // [s] no layer is due after `stop`
     Index firstSite = 0;  // this emitter's sites in the flow's site array
     Index siteCount = 0;
     Real density = 0;  // [kg/m^3] of the emitted fluid (the rest density)
@@ -61,11 +61,11 @@ struct Sink {
 // The flow's counts, on the backend. The live particles are slots [0, live) after each grid
 // build; emitted particles get ids nextId, nextId + 1, ...
 struct FlowCounters {
-    Index live = 0;      // live particles (the rest of the slots are parked)
-    Index nextId = 0;    // the next fresh particle id
-    Index emitted = 0;   // particles let in since the start
-    Index removed = 0;   // particles taken out by sinks since the start
-    Index refused = 0;   // particles an emitter could not let in: no parked slot left
+    Index live = 0;     // live particles (the rest of the slots are parked)
+    Index nextId = 0;   // the next fresh particle id
+    Index emitted = 0;  // particles let in since the start
+    Index removed = 0;  // particles taken out by sinks since the start
+    Index refused = 0;  // particles an emitter could not let in: no parked slot left
     // Scratch of the emitter being served: its new layers' first slot and first id, how many
     // layers it lets in this step, and the layer count due (the last new layer is due - 1).
     Index firstSlot = 0, firstId = 0, newLayers = 0, due = 0;

@@ -26,7 +26,7 @@ ScriptedSimulation::ScriptedSimulation(const Scene& scene, const ScriptedOptions
         setupOptions.deviceFreeBytes = cudaFreeMemoryBytes();  // checked before seeding
     }
     SimulationSetup setup = buildSetup(scene_, setupOptions, &report_);
-    mode_ = resolveNeighbourMode(asked, setup.grid, setup.particleCount());
+    mode_ = resolveNeighbourMode(asked, setup.grid, setup.slotCount());
     sim_ = makeSimulation(backend, mode_, std::move(setup));
     sim_->computeDensity();  // frame 0's density and pressure, as `weir run` writes them
 }

@@ -408,9 +408,18 @@ void bindSimulation(nb::module_& m) {
             "(n,) pressure [Pa] from the density by the equation of state, original order; a "
             "copy (as frames hold it).")
         .def(
-            "ids", [](ScriptedSimulation& s) { return originalIds(s.particles().size()); },
+            "ids",
+            [](ScriptedSimulation& s) {
+                const HostParticles& p = s.particles();
+                if (p.id.empty()) {
+                    return originalIds(p.size());
+                }
+                std::vector<std::int32_t> ids(p.id.begin(), p.id.end());
+                return ownedArray(std::move(ids), {p.size()});
+            },
             "(n,) int32 ids of the rows of the other arrays: 0 .. n - 1, as they are in the "
-            "original order.")
+            "original order; with emitters or sinks, the live particles' ids in increasing order "
+            "(an emitted particle gets a fresh id; ids are never reused).")
         .def(
             "particle_arrays",
             [](nb::handle self) {

@@ -30,6 +30,22 @@ def test_arrays_have_one_row_per_particle_in_the_original_order(dam_break_small)
     assert p[bottom].mean() > p[top].mean()
 
 
+def test_a_hose_grows_the_count_with_fresh_ids():
+    # Emitters and sinks (docs/flow.md): the count starts at zero and grows; the rows' ids are
+    # unique and increasing, as frames hold them, and the arrays have one row per live particle.
+    sim = weir.Simulation("hose_filling_glass", backend="cpu", particles=2000)
+    assert sim.particle_count == 0
+    sim.advance_to(0.1)
+    n = sim.particle_count
+    assert n > 0
+    ids, x = sim.ids(), sim.positions()
+    assert ids.shape == (n,) and x.shape == (n, 3)
+    assert np.all(np.diff(ids) > 0)
+    np.testing.assert_array_equal(ids, np.arange(n))  # nothing has drained yet
+    # The water is in the hose's jet, below the nozzle at 0.42 m.
+    assert np.all(x[:, 1] < 0.43)
+
+
 def test_step_and_advance_to_move_the_clock(dam_break_small):
     sim = dam_break_small
     assert sim.step_count == 0 and sim.time == 0

@@ -618,9 +618,8 @@ void readFlow(const FieldReader& top, Scene& scene) {
                        r.find("speed") ? "given with a rate" : "missing, and so is rate",
                        "exactly one of \"speed\" (m/s) or \"rate\" (m^3/s)");
             }
-            e.speed = r.find("speed") != nullptr
-                          ? r.number("speed", positiveUpTo(1e3))
-                          : r.number("rate", positiveUpTo(1e6)) / e.area();
+            e.speed = r.find("speed") != nullptr ? r.number("speed", positiveUpTo(1e3))
+                                                 : r.number("rate", positiveUpTo(1e6)) / e.area();
             if (!(e.speed <= 1e3)) {
                 r.fail(r.pathOf("rate"), r.written("rate"),
                        "at most 1000 m/s through the emitter's area of " + formatNumber(e.area()) +
@@ -728,9 +727,8 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
 
     FieldReader top(
         root, "", source,
-        {"name", "description", "container", "blocks", "spheres", "obstacles", "bodies",
-         "emitters", "sinks", "fluid", "particles", "gravity", "time", "walls", "limits", "solver",
-         "dfsph"});
+        {"name", "description", "container", "blocks", "spheres", "obstacles", "bodies", "emitters",
+         "sinks", "fluid", "particles", "gravity", "time", "walls", "limits", "solver", "dfsph"});
     Scene scene;
     scene.sourcePath = source;
     scene.json = root.dump();

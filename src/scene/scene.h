@@ -106,10 +106,10 @@ struct BodySpec {
 struct EmitterSpec {
     bool isDisc = true;
     Vec3d center;
-    double radius = 0;             // a disc's
-    double width = 0, height = 0;  // a rectangle's "size"
-    Vec3d direction;               // unit
-    double speed = 0;              // m/s along the direction ("rate" / area when a rate is given)
+    double radius = 0;              // a disc's
+    double width = 0, height = 0;   // a rectangle's "size"
+    Vec3d direction;                // unit
+    double speed = 0;               // m/s along the direction ("rate" / area when a rate is given)
     double start = 0, stop = 1e30;  // s
     double area() const;
     // In-plane unit axes: the rectangle's first and second size run along them.

@@ -201,12 +201,18 @@ TEST(Scene, ShippedScenesNameTheirFluidAndRunTheDefaultModel) {
         const Scene s = builtinScene(name);
         EXPECT_FALSE(s.preset.empty()) << name;
         EXPECT_EQ(s.model, FluidModelName::DeltaSph) << name;
-        if (!s.bodies.empty()) {  // rigid bodies couple through delta-SPH's walls only
+        // Rigid bodies couple through delta-SPH's walls only; emitters and sinks run with it only.
+        const char* deltaOnly = !s.bodies.empty()     ? "bodies"
+                                : !s.emitters.empty() ? "emitters"
+                                : !s.sinks.empty()    ? "sinks"
+                                                      : nullptr;
+        if (deltaOnly != nullptr) {
             try {
                 withFluidModel(s, "paper");
-                ADD_FAILURE() << name << " ran its bodies under the paper's model";
+                ADD_FAILURE() << name << " ran its " << deltaOnly << " under the paper's model";
             } catch (const SceneError& e) {
-                EXPECT_NE(std::string(e.what()).find("field 'bodies'"), std::string::npos)
+                EXPECT_NE(std::string(e.what()).find("field '" + std::string(deltaOnly) + "'"),
+                          std::string::npos)
                     << e.what();
             }
             continue;
@@ -326,7 +332,8 @@ const BadCase kBadCases[] = {
     {"/spheres/0/radius", std::nullopt, "'spheres[0].radius'", "missing", "a number > 0"},
     // Unknown keys at every level, with the allowed ones.
     {"/gravty", "[0, -9.81, 0]", "'gravty'", "an unknown key (did you mean 'gravity'?)",
-     "one of: name, description, container, blocks, spheres, obstacles, bodies, fluid, particles"},
+     "one of: name, description, container, blocks, spheres, obstacles, bodies, emitters, sinks, "
+     "fluid, particles"},
     {"/fluid/restDensty", "1000", "'fluid.restDensty'", "(did you mean 'restDensity'?)",
      "one of: preset, restDensity, viscosity, stiffness, eos, pressureForce"},
     {"/blocks/0/speed", "[0, 0, 0]", "'blocks[0].speed'", "an unknown key",

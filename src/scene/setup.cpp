@@ -448,9 +448,9 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         std::sqrt(2.0 * g * std::max(report.fluidHeight, bodyFall)) + initialSpeed;
     // Emitters: their speed, and the fall from each to the floor.
     for (const EmitterSpec& e : scene.emitters) {
-        report.expectedSpeed =
-            std::max(report.expectedSpeed,
-                     std::sqrt(e.speed * e.speed + 2.0 * g * std::max(0.0, dot(e.center, up) - floor)));
+        report.expectedSpeed = std::max(
+            report.expectedSpeed,
+            std::sqrt(e.speed * e.speed + 2.0 * g * std::max(0.0, dot(e.center, up) - floor)));
     }
     if (report.expectedSpeed <= 0) {
         report.expectedSpeed = 0.1;
@@ -928,8 +928,10 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             flow.sinks.push_back(Sink{Vec3(b.min), Vec3(b.max)});
         }
         if (capacity > budget.limit() || capacity >= std::int64_t(kMaxParticles)) {
-            throw budget.tooMany(where + " (the initial fluid and what the emitters let in over "
-                                         "the scene's duration of " + fmt(scene.duration) + " s)",
+            throw budget.tooMany(where +
+                                     " (the initial fluid and what the emitters let in over "
+                                     "the scene's duration of " +
+                                     fmt(scene.duration) + " s)",
                                  double(capacity), d, false);
         }
         flow.capacity = Index(capacity);

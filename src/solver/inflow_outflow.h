@@ -103,7 +103,8 @@ class InflowOutflow {
                 for (Index l = 0; l < c.newLayers; ++l) {
                     // Layer due - newLayers + l, placed where it has got to since it was due.
                     const Index layer = c.due - c.newLayers + l;
-                    const Real travelled = Real(double(e.speed) * (clock->time - e.layerTime(layer)));
+                    const Real travelled =
+                        Real(double(e.speed) * (clock->time - e.layerTime(layer)));
                     const Index offset = l * e.siteCount + s;
                     const Index slot = c.firstSlot + offset;
                     pos[slot] = Real4::from(sites[s].xyz() + e.normal * travelled);

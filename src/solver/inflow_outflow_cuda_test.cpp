@@ -39,8 +39,8 @@ TEST(InflowOutflowCuda, AgreesWithCpu) {
         // Each lets in the layers due at its steps' starts: the same, or one layer apart where a
         // layer fell due inside the last step of one and not the other.
         EXPECT_LE(std::abs(a.emitted - b.emitted), sites) << t;
-        EXPECT_EQ(b.live, Index(buildSetup(scene, {}, nullptr).particleCount()) + b.emitted -
-                              b.removed);
+        EXPECT_EQ(b.live,
+                  Index(buildSetup(scene, {}, nullptr).particleCount()) + b.emitted - b.removed);
         EXPECT_EQ(b.refused, 0);
         // The drain takes about as much on both (the splash that reaches it differs in detail).
         EXPECT_LE(std::abs(a.removed - b.removed), 0.1 * a.removed + 2 * sites) << t;

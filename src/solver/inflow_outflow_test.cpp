@@ -103,7 +103,7 @@ TEST(InflowOutflow, HoseFillsAnEmptyTank) {
     const SimulationSetup setup = buildSetup(scene, {}, nullptr);
     EXPECT_EQ(setup.particleCount(), 0);
     ASSERT_EQ(setup.flow.emitters.size(), 1u);
-    EXPECT_EQ(setup.flow.emitters[0].siteCount, 6);  // 3 x 2 sites
+    EXPECT_EQ(setup.flow.emitters[0].siteCount, 6);                           // 3 x 2 sites
     EXPECT_NEAR(setup.flow.emitters[0].speed, 0.0006 / (0.03 * 0.02), 1e-6);  // rate / area
     auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, setup);
     EXPECT_EQ(sim->particleCount(), 0);
@@ -179,8 +179,8 @@ TEST(InflowOutflow, FullReservoirRefusesAndCounts) {
 
 TEST(InflowOutflow, HoseAndDrainKeepTheBooks) {
     // Water comes in and drains out at the same time; parked slots are reused.
-    const Scene scene = hoseScene(R"("sinks": [{"min": [0, 0, 0], "max": [0.2, 0.02, 0.2]}], )",
-                                  0.4);
+    const Scene scene =
+        hoseScene(R"("sinks": [{"min": [0, 0, 0], "max": [0.2, 0.02, 0.2]}], )", 0.4);
     const SimulationSetup setup = buildSetup(scene, {}, nullptr);
     const Index initial = Index(setup.particleCount());
     auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, setup);
@@ -235,27 +235,29 @@ TEST(InflowOutflow, BadEmittersAndSinksAreRefusedNamingTheField) {
                      "emitters[0].speed", "exactly one of");
     expectSceneError(box + R"("emitters": [{)" + disc + R"(, "direction": [0, -1, 0]}])",
                      "emitters[0].speed", "missing");
-    expectSceneError(box + R"("emitters": [{)" + disc +
-                         R"(, "direction": [0, -1, 0], "speed": -2}])",
-                     "emitters[0].speed", "> 0");
+    expectSceneError(
+        box + R"("emitters": [{)" + disc + R"(, "direction": [0, -1, 0], "speed": -2}])",
+        "emitters[0].speed", "> 0");
     expectSceneError(box + R"("emitters": [{)" + disc +
                          R"(, "direction": [0, -1, 0], "speed": 1, "start": 1, "stop": 0.5}])",
                      "emitters[0].stop", "after \"start\"");
-    expectSceneError(box + R"("emitters": [{"direction": [0, -1, 0], "speed": 1}])",
-                     "emitters[0]", "neither a disc nor a rectangle");
+    expectSceneError(box + R"("emitters": [{"direction": [0, -1, 0], "speed": 1}])", "emitters[0]",
+                     "neither a disc nor a rectangle");
     expectSceneError(box + R"("emitters": [{"rectangle": {"center": [0.5, 0.5, 0.5],
                      "size": [0.1]}, "direction": [1, 0, 0], "speed": 1}])",
                      "emitters[0].rectangle.size", "an array of 2 numbers");
     expectSceneError(box + R"("sinks": [{"min": [2, 0, 0], "max": [3, 1, 1]}])", "sinks[0]",
                      "outside the container");
     expectSceneError(box + R"("sinks": [{"min": [0.4, 0.7, 0.4], "max": [0.6, 0.9, 0.6]}],
-                     "emitters": [{)" + disc + R"(, "direction": [0, -1, 0], "speed": 1}])",
+                     "emitters": [{)" +
+                         disc + R"(, "direction": [0, -1, 0], "speed": 1}])",
                      "emitters[0]", "inside sinks[0]");
     expectSceneError(box + R"("fluid": {"model": "paper"},
                      "sinks": [{"min": [0, 0, 0], "max": [0.1, 0.1, 0.1]}])",
                      "sinks", "delta-sph");
     expectSceneError(box + R"("solver": "dfsph",
-                     "emitters": [{)" + disc + R"(, "direction": [0, -1, 0], "speed": 1}])",
+                     "emitters": [{)" +
+                         disc + R"(, "direction": [0, -1, 0], "speed": 1}])",
                      "emitters", "wcsph");
 }
 

@@ -47,8 +47,8 @@ class ParticleStore {
         const Real4* pos;
         bool active;
         WEIR_HD bool operator()(Index i) const {
-            return active && (pos[i].w == kGhostMark || pos[i].w == kRemovedMark ||
-                              pos[i].w == kParkedMark);
+            return active &&
+                   (pos[i].w == kGhostMark || pos[i].w == kRemovedMark || pos[i].w == kParkedMark);
         }
     };
 
@@ -102,9 +102,9 @@ class ParticleStore {
 
     // Copies the particles to the host in id order (ids 0 .. n - 1), with the pressure that the
     // equation of state gives their density. With a reservoir, the `live` first slots (the live
-    // particles after a step), in id order with their ids in out.id (host_frame.h). From the GPU through host arrays kept for the next
-    // frame (allocating and clearing 36 B a particle each frame cost as much as the copy); on
-    // the CPU straight from the particle arrays.
+    // particles after a step), in id order with their ids in out.id (host_frame.h). From the GPU
+    // through host arrays kept for the next frame (allocating and clearing 36 B a particle each
+    // frame cost as much as the copy); on the CPU straight from the particle arrays.
     void download(Exec& exec, HostParticles& out, const SphParams& params, Index live = -1) {
         const std::size_t n = std::size_t(live >= 0 ? live : n_);
         if (live >= 0) {

@@ -60,10 +60,11 @@ std::unique_ptr<Simulation> makeSimulation(Backend backend, NeighbourMode mode,
                                            SimulationSetup setup) {
     mode = resolveNeighbourMode(mode, setup.grid, setup.slotCount());
     if (setup.flow.active() && mode != NeighbourMode::Dense) {
-        throw SimulationError(std::string("emitters and sinks run with the dense cell table only, ") +
-                              "but the neighbour search is '" + neighbourModeName(mode) +
-                              "'; use --neighbours dense (or auto, where the container's grid "
-                              "fits the dense table)");
+        throw SimulationError(
+            std::string("emitters and sinks run with the dense cell table only, ") +
+            "but the neighbour search is '" + neighbourModeName(mode) +
+            "'; use --neighbours dense (or auto, where the container's grid "
+            "fits the dense table)");
     }
     try {
         setup.method = checkPressureSolver(setup.method);

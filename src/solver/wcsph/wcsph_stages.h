@@ -11,8 +11,8 @@
 #include "physics/boundary.h"
 #include "physics/collision.h"
 #include "physics/delta_sph.h"
-#include "physics/emitter.h"
 #include "physics/density.h"
+#include "physics/emitter.h"
 #include "physics/eos.h"
 #include "physics/faults.h"
 #include "physics/integration.h"
@@ -256,7 +256,8 @@ WEIR_HD inline void deltaForceAt(Index i, const ParticleView& pv, const Neighbou
                                  FaultRecord* fault, StepClock* clock, Real4* newPos, Real4* newVel,
                                  Real* kernelSum, Team<TeamSize> team = {}) {
     const Real4 v4 = pv.vel[i];
-    if (clock->dt == Real(0) || isParked(pv.pos[i])) {  // a no-op step, or no particle: carried over
+    if (clock->dt == Real(0) ||
+        isParked(pv.pos[i])) {  // a no-op step, or no particle: carried over
         if (team.leader()) {
             newPos[i] = pv.pos[i];
             newVel[i] = v4;
