@@ -512,6 +512,46 @@ void readBodies(const FieldReader& top, Scene& scene) {
                     body.drive = BodyDrive::Rotate;
                     body.rate = o.vec3("rate", std::nullopt, between(-1e4, 1e4));
                 }
+                // The body's reach over its motion: its bounds moved by the amplitude both ways,
+                // or the circles its corners turn in. A piston that reaches past a wall would crush
+                // the fluid caught between them.
+                const Box start = body.bounds();
+                Box swept = start;
+                if (body.drive == BodyDrive::Oscillate) {
+                    for (int a = 0; a < 3; ++a) {
+                        swept.min[a] -= std::abs(body.amplitude[a]);
+                        swept.max[a] += std::abs(body.amplitude[a]);
+                    }
+                } else if (!body.isSphere && length(body.rate) > 0) {  // a sphere stays put
+                    // Each corner sweeps a circle about the axis through the centre: along world
+                    // axis e it reaches para (a.e) +- perp sqrt(1 - (a.e)^2).
+                    const Vec3d centre = (start.min + start.max) * 0.5;
+                    const Vec3d axis = body.rate / length(body.rate);
+                    swept = {centre, centre};
+                    for (int c = 0; c < 8; ++c) {
+                        const Vec3d corner((c & 1) ? start.max.x : start.min.x,
+                                           (c & 2) ? start.max.y : start.min.y,
+                                           (c & 4) ? start.max.z : start.min.z);
+                        const Vec3d rel = corner - centre;
+                        const double para = dot(rel, axis);
+                        const double perp = length(rel - axis * para);
+                        for (int a = 0; a < 3; ++a) {
+                            const double ae = axis[a];
+                            const double across = perp * std::sqrt(std::max(0.0, 1 - ae * ae));
+                            swept.min[a] = std::min(swept.min[a], centre[a] + para * ae - across);
+                            swept.max[a] = std::max(swept.max[a], centre[a] + para * ae + across);
+                        }
+                    }
+                }
+                const std::string out = overhang(swept, scene.container);
+                if (!out.empty()) {
+                    r.fail(r.pathOf("motion"),
+                           "a motion that takes the body from " + formatVec(swept.min) + " to " +
+                               formatVec(swept.max),
+                           "a motion that keeps the body inside the container " +
+                               formatVec(scene.container.min) + " to " +
+                               formatVec(scene.container.max) + " (it reaches out by " + out + ")");
+                }
                 for (const char* key : {"density", "mass", "velocity", "angularVelocity"}) {
                     if (r.find(key) != nullptr) {
                         r.fail(r.pathOf(key), r.written(key),

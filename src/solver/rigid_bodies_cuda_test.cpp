@@ -73,7 +73,11 @@ TEST(RigidBodiesCuda, AgreesWithCpu) {
 // On the CPU at d = 0.01 m the same piston makes waves of the right height next to it (26 mm at
 // 0.2 m after the ramp), and their crests shrink as they run down the flume (12, 9, 6, 3.5 mm
 // above still water at 0.2, 0.4, 0.6, 0.8 m in the train's front); whether the train decays or
-// only its front is low was not settled. Enabled again once it passes (issue 18).
+// only its front is low was not settled. Until 2026-12-03 the piston's stroke took its back 5 mm
+// past the end wall (the scene reader now refuses that); with the piston clear of the wall the
+// H200 still measured 0.86 mm here. A slab 1.5 cm wide keeps the wave (28 and 20 mm at 0.5 and
+// 1.0 m at d = 5 mm), 3 and 6 cm do not (16 and 6 mm): docs/bodies.md. Enabled again once it
+// passes (issue 14's fidelity work, issue 18).
 TEST(RigidBodiesCuda, DISABLED_PistonWaveHeightFollowsLinearTheory) {
     if (!cudaDeviceAvailable()) {
         GTEST_SKIP() << "no CUDA device visible";
@@ -81,8 +85,8 @@ TEST(RigidBodiesCuda, DISABLED_PistonWaveHeightFollowsLinearTheory) {
     const double depth = 0.3, period = 1.0, amplitude = 0.01, d = 0.005, probe = 1.55;
     const Scene scene = parseScene(R"({"fluid": {"preset": "water"},
         "container": {"min": [0, 0, 0], "max": [4.0, 0.45, 0.03]},
-        "blocks": [{"min": [0.05, 0, 0], "max": [4.0, 0.3, 0.03]}],
-        "bodies": [{"box": {"min": [0.005, 0, 0], "max": [0.045, 0.42, 0.03]},
+        "blocks": [{"min": [0.06, 0, 0], "max": [4.0, 0.3, 0.03]}],
+        "bodies": [{"box": {"min": [0.015, 0, 0], "max": [0.055, 0.42, 0.03]},
                     "motion": {"oscillate": {"amplitude": [0.01, 0, 0], "period": 1.0,
                                              "ramp": 1.0}}}],
         "walls": {"slip": "free-slip"},
