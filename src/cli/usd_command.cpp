@@ -75,7 +75,7 @@ std::string writeRunUsd(const UsdOptions& options) {
     std::size_t withMesh = 0;
     for (const FrameEntry& frame : frames) {
         UsdFrame f{frame.index, frame.path,
-                   options.noMeshes ? "" : meshFileOf(meshDir, frame.index)};
+                   options.noMeshes ? "" : meshFileOf(meshDir, frame.index), frame.bodies};
         withMesh += f.meshPath.empty() ? 0 : 1;
         usdFrames.push_back(f);
     }

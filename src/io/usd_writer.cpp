@@ -202,6 +202,60 @@ void writeObstacles(std::ostream& out, const Scene& scene) {
     out << "    }\n";
 }
 
+// The rigid bodies: each an Xform moved by its poses' time samples, holding its shape as it is in
+// the body's own frame (centred on the body's centre). Frames without every body's pose (a run
+// from before bodies were recorded) give no samples; no frame with them, no bodies.
+void writeBodies(std::ostream& out, const Scene& scene, const std::vector<UsdFrame>& frames) {
+    const std::size_t count = scene.bodies.size();
+    const bool posed = count > 0 && std::any_of(frames.begin(), frames.end(), [&](const auto& f) {
+                           return f.bodies.size() == count;
+                       });
+    if (!posed) {
+        return;
+    }
+    out << "\n    def Xform \"bodies\"\n    {\n";
+    for (std::size_t k = 0; k < count; ++k) {
+        const BodySpec& body = scene.bodies[k];
+        std::string translate, orient;
+        for (const UsdFrame& f : frames) {
+            if (f.bodies.size() != count) {
+                continue;
+            }
+            const BodyPose& pose = f.bodies[k];
+            const std::string at = "                " + std::to_string(f.number) + ": ";
+            translate += at + vec(pose.position.x, pose.position.y, pose.position.z) + ",\n";
+            orient += at + "(" + number(pose.orientation[3]) + ", " + number(pose.orientation[0]) +
+                      ", " + number(pose.orientation[1]) + ", " + number(pose.orientation[2]) +
+                      "),\n";
+        }
+        out << "        def Xform \"body_" << k << "\"\n        {\n"
+            << "            double3 xformOp:translate.timeSamples = {\n"
+            << translate << "            }\n"
+            << "            quatf xformOp:orient.timeSamples = {\n"
+            << orient << "            }\n"
+            << "            uniform token[] xformOpOrder = [\"xformOp:translate\", "
+               "\"xformOp:orient\"]\n";
+        if (body.isSphere) {
+            const double r = body.sphere.radius;
+            out << "            def Sphere \"shape\"\n            {\n"
+                << "                float3[] extent = [" << vec(-r, -r, -r) << ", " << vec(r, r, r)
+                << "]\n"
+                << "                double radius = " << numberText(r) << "\n"
+                << "            }\n";
+        } else {
+            const Vec3d size = body.box.max - body.box.min;
+            out << "            def Cube \"shape\"\n            {\n"
+                << "                float3[] extent = [(-0.5, -0.5, -0.5), (0.5, 0.5, 0.5)]\n"
+                << "                double size = 1\n"
+                << "                float3 xformOp:scale = " << vec(size.x, size.y, size.z) << "\n"
+                << "                uniform token[] xformOpOrder = [\"xformOp:scale\"]\n"
+                << "            }\n";
+        }
+        out << "        }\n";
+    }
+    out << "    }\n";
+}
+
 }  // namespace
 
 void writeUsdStage(const std::string& path, const std::vector<UsdFrame>& frames,
@@ -317,6 +371,7 @@ void writeUsdStage(const std::string& path, const std::vector<UsdFrame>& frames,
         if (options.scene != nullptr) {
             out << "\n";
             writeObstacles(out, *options.scene);
+            writeBodies(out, *options.scene, frames);
         }
         out << "}\n";
     });

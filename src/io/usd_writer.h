@@ -9,13 +9,15 @@
 
 #include "io/io_error.h"
 #include "scene/scene.h"
+#include "solver/particles.h"
 
 namespace weir {
 
 struct UsdFrame {
-    int number = 0;             // the frame's number, its time code
-    std::string particlesPath;  // a frame file of any frame format (readFrameFile)
-    std::string meshPath;       // its surface mesh (.obj or .ply, readMesh); "" none
+    int number = 0;                // the frame's number, its time code
+    std::string particlesPath;     // a frame file of any frame format (readFrameFile)
+    std::string meshPath;          // its surface mesh (.obj or .ply, readMesh); "" none
+    std::vector<BodyPose> bodies;  // the scene's rigid bodies at this frame (frames.json)
 };
 
 struct UsdStageOptions {
@@ -35,7 +37,10 @@ struct UsdStageOptions {
 //   faceVertexIndices and extent, time-sampled; triangles wound counter-clockwise seen from
 //   outside (USD's default rightHanded orientation);
 // - container (Cube, purpose guide) and obstacles/box_N (Cube), sphere_N (Sphere), mesh_N
-//   (Mesh), static.
+//   (Mesh), static;
+// - bodies/body_N (Xform), where the scene has rigid bodies and the frames their poses: its
+//   xformOp:translate (the centre) and xformOp:orient (quatf, real part first) time-sampled,
+//   holding its shape about the centre (a Cube scaled to the box, or a Sphere).
 // Metres, Y up, start and end time codes the first and last frame numbers. Writes `path`
 // atomically, reading each frame once (an attribute's samples are kept in temporaries beside
 // path until the stage is put together). Throws IoError naming the file that cannot be read or

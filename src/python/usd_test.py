@@ -180,3 +180,51 @@ def test_a_scenes_mesh_obstacle_is_placed(cli, repo, tmp_path):
     assert len(rock.GetFaceVertexCountsAttr().Get()) == sum(l.startswith("f ") for l in obj)
     np.testing.assert_allclose(np.array(rock.GetPointsAttr().Get()),
                                vertices * 0.1 + [0.6, 0, 0.3], atol=1e-6)
+
+
+def test_rigid_bodies_move_by_their_poses(cli, tmp_path):
+    """A floating box and a turning paddle (issue 18): each a /weir/bodies/body_N Xform whose
+    translate and orient follow frames.json's poses frame by frame, holding its shape."""
+    scene = {
+        "name": "usd_bodies",
+        "fluid": {"preset": "water"},
+        "container": {"min": [0, 0, 0], "max": [0.4, 0.3, 0.2]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.4, 0.1, 0.2]}],
+        "bodies": [
+            {"box": {"min": [0.05, 0.15, 0.06], "max": [0.13, 0.21, 0.14]}, "density": 600},
+            {"sphere": {"center": [0.3, 0.05, 0.1], "radius": 0.03},
+             "motion": {"rotate": {"rate": [0, 0, 4]}}}],
+        "particles": {"spacing": 0.02},
+        "time": {"duration": 0.1, "frameRate": 30},
+    }
+    (tmp_path / "scene.json").write_text(json.dumps(scene))
+    out = tmp_path / "out"
+    cli("run", tmp_path / "scene.json", "--backend", "cpu", "--quiet", "--format", "csv",
+        "--usd", "--out", out)
+    index = json.loads((out / "frames.json").read_text())
+    stage = Usd.Stage.Open(str(out / "frames.usda"))
+    for k in range(2):
+        body = stage.GetPrimAtPath(f"/weir/bodies/body_{k}")
+        assert body, f"no /weir/bodies/body_{k}"
+        xform = UsdGeom.Xformable(body)
+        translate = body.GetAttribute("xformOp:translate")
+        orient = body.GetAttribute("xformOp:orient")
+        for frame in index["frames"]:
+            pose = frame["bodies"][k]
+            np.testing.assert_allclose(np.array(translate.Get(frame["index"])), pose["position"],
+                                       atol=1e-6)
+            q = orient.Get(frame["index"])
+            np.testing.assert_allclose([q.GetReal(), *q.GetImaginary()],
+                                       [pose["orientation"][3], *pose["orientation"][:3]],
+                                       atol=1e-6)
+        assert xform.GetOrderedXformOps()
+    box = UsdGeom.Cube(stage.GetPrimAtPath("/weir/bodies/body_0/shape"))
+    assert box and box.GetSizeAttr().Get() == 1
+    np.testing.assert_allclose(np.array(box.GetPrim().GetAttribute("xformOp:scale").Get()),
+                               [0.08, 0.06, 0.08], atol=1e-6)
+    ball = UsdGeom.Sphere(stage.GetPrimAtPath("/weir/bodies/body_1/shape"))
+    assert ball and abs(ball.GetRadiusAttr().Get() - 0.03) < 1e-9
+    # The box fell; the paddle turned about z (its quaternion's z part grows).
+    first, last = index["frames"][0], index["frames"][-1]
+    assert last["bodies"][0]["position"][1] < first["bodies"][0]["position"][1]
+    assert abs(orient_z := last["bodies"][1]["orientation"][2]) > 0.1, orient_z
