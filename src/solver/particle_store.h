@@ -107,20 +107,13 @@ class ParticleStore {
     // frame cost as much as the copy); on the CPU straight from the particle arrays.
     void download(Exec& exec, HostParticles& out, const SphParams& params, Index live = -1) {
         const std::size_t n = std::size_t(live >= 0 ? live : n_);
-        if (live >= 0) {
-            if constexpr (Exec::isDevice) {
-                hostId_.resize(n);
-                hostPos_.resize(n);
-                hostVel_.resize(n);
-                exec.download(id_, hostId_.data(), n);
-                exec.download(pos_, hostPos_.data(), n);
-                exec.download(vel_, hostVel_.data(), n);
-                sortToHostFrame(hostId_.data(), hostPos_.data(), hostVel_.data(), n, params, out);
+        const auto toFrame = [&](const Index* id, const Real4* pos, const Real4* vel) {
+            if (live >= 0) {
+                sortToHostFrame(id, pos, vel, n, params, out);
             } else {
-                sortToHostFrame(id_.data(), pos_.data(), vel_.data(), n, params, out);
+                scatterToHostFrame(id, pos, vel, n, params, out);
             }
-            return;
-        }
+        };
         if constexpr (Exec::isDevice) {
             hostId_.resize(n);
             hostPos_.resize(n);
@@ -128,9 +121,9 @@ class ParticleStore {
             exec.download(id_, hostId_.data(), n);
             exec.download(pos_, hostPos_.data(), n);
             exec.download(vel_, hostVel_.data(), n);
-            scatterToHostFrame(hostId_.data(), hostPos_.data(), hostVel_.data(), n, params, out);
+            toFrame(hostId_.data(), hostPos_.data(), hostVel_.data());
         } else {
-            scatterToHostFrame(id_.data(), pos_.data(), vel_.data(), n, params, out);
+            toFrame(id_.data(), pos_.data(), vel_.data());
         }
     }
 
