@@ -267,7 +267,7 @@ class Simulation:
 
     def ids(self) -> NDArray[numpy.int32]:
         """
-        (n,) int32 ids of the rows of the other arrays: 0 .. n - 1, as they are in the original order.
+        (n,) int32 ids of the rows of the other arrays: 0 .. n - 1, as they are in the original order; with emitters or sinks, the live particles' ids in increasing order (an emitted particle gets a fresh id; ids are never reused).
         """
 
     def particle_arrays(self) -> ParticleArrays:
