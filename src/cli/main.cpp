@@ -431,6 +431,11 @@ int weirMain(int argc, char** argv) {
                      "Taylor-Green case)")
         ->check(CLI::Range(0.0, 10.0));
     validateCmd
+        ->add_option("--smoothing-ratio", validate.smoothingRatio,
+                     "particles.smoothingRatio (h / d, the kernel's support over the spacing) of "
+                     "every case (default: the scenes' default)")
+        ->check(CLI::Range(1.2, 5.0));
+    validateCmd
         ->add_option("--lobovsky-resolution", validate.lobovskyResolution,
                      "Particles over the height of the Lobovsky et al. column (H = 0.3 m)")
         ->transform(countOption(6, 400))

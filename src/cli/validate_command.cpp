@@ -26,6 +26,9 @@ int validateCommand(const ValidateOptions& options) {
         if (options.shifting >= 0) {
             o.shifting = options.shifting;
         }
+        if (options.smoothingRatio >= 0) {
+            o.smoothingRatio = options.smoothingRatio;
+        }
         o.hydrostatic = o.damBreak = o.viscous = false;
         std::stringstream cases(options.cases);
         for (std::string c; std::getline(cases, c, ',');) {

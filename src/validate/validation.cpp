@@ -76,6 +76,7 @@ struct CaseScene {
     double spacing = 0, duration = 0, frameRate = 0;
     std::string walls = R"({"model": "particles"})";  // "" leaves the scene's default
     std::string extra;
+    std::optional<double> smoothingRatio;  // particles.smoothingRatio; unset: the default
 };
 
 std::string sceneJson(const CaseScene& c) {
@@ -84,7 +85,8 @@ std::string sceneJson(const CaseScene& c) {
            box(c.container.x, c.container.y, c.container.z) + R"(, "periodic": [)" +
            flag(c.periodic[0]) + ", " + flag(c.periodic[1]) + ", " + flag(c.periodic[2]) +
            R"(]}, "blocks": [{"min": [0, 0, 0], "max": )" + box(c.block.x, c.block.y, c.block.z) +
-           R"(}], "fluid": )" + c.fluid + R"(, "particles": {"spacing": )" + num(c.spacing) + "}" +
+           R"(}], "fluid": )" + c.fluid + R"(, "particles": {"spacing": )" + num(c.spacing) +
+           (c.smoothingRatio ? R"(, "smoothingRatio": )" + num(*c.smoothingRatio) : "") + "}" +
            (c.walls.empty() ? "" : R"(, "walls": )" + c.walls) + c.extra +
            R"(, "time": {"duration": )" + num(c.duration) + R"(, "frameRate": )" +
            num(c.frameRate) + "}}";
@@ -95,7 +97,11 @@ std::string sceneJson(const CaseScene& c) {
 std::unique_ptr<Simulation> startCase(const ValidationOptions& o, const CaseScene& c, Scene& scene,
                                       SetupReport& report,
                                       const std::function<void(SimulationSetup&)>& adjust = {}) {
-    scene = parseScene(sceneJson(c), "<validate " + c.name + ">");
+    CaseScene asked = c;
+    if (o.smoothingRatio) {
+        asked.smoothingRatio = o.smoothingRatio;
+    }
+    scene = parseScene(sceneJson(asked), "<validate " + c.name + ">");
     if (!o.solver.empty()) {
         scene = withSolver(scene, o.solver);
     }
