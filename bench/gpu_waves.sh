@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Small waves on the GPU (issue 14): the piston wave flume of bench/wave_flume.py in variants
 # (slab width, spacing, smoothing ratio h/d, particle shifting), each run to 4 s with binary PLY
-# frames and its probes' wave heights; then, optionally, weir validate's dam-break ladder and
-# Lobovsky case at the ratios in RATIOS. Results under $OUT (default gpu-out).
-# Usage: FLUMES="0.03:0.005:2:0 ..." RATIOS="3" CASES="dam-break lobovsky" bash bench/gpu_waves.sh
-#   each flume width:spacing:ratio:shifting[:periodic]; PARTS picks build, flumes, validate.
+# frames and its probes' wave heights; then weir validate runs (VALIDATIONS: lines of
+# name|options) and the dam break's step timed at the ratios in BENCH_RATIOS beside the
+# reference. Results under $OUT (default gpu-out).
+# Usage: FLUMES="0.03:0.005:2:0 ..." VALIDATIONS=$'a|--cases ...\nb|...' bash bench/gpu_waves.sh
+#   each flume width:spacing:ratio:shifting[:periodic]; PARTS picks build, flumes, validate, bench.
 set -uo pipefail
 out=$(realpath -m "${OUT:-gpu-out}")
-parts=" ${PARTS:-build flumes validate} "
+parts=" ${PARTS:-build flumes validate bench} "
 has() { [[ "$parts" == *" $1 "* ]]; }
 mkdir -p "$out"
 py=python3
@@ -36,22 +37,33 @@ if has flumes; then
     done
 fi
 if has validate; then
-    for r in ${RATIOS:-3}; do
-        for c in ${CASES:-dam-break}; do
-            case $c in
-            dam-break) opts=(--column-resolution "${LADDER:-20,40,80,160}") ;;
-            lobovsky) opts=(--lobovsky-resolution "${LOBOVSKY:-30}") ;;
-            hydrostatic) opts=(--tank-resolution 48) ;;
-            *) opts=() ;;
-            esac
-            name="validate-$c-r$r"
-            echo "== $name"
-            timeout "${VALIDATE_TIMEOUT:-300}" ./build-gpu/weir validate --backend cuda --no-plot \
-                --smoothing-ratio "$r" --cases "$c" "${opts[@]}" -o "$out/$name" \
-                >"$out/$name.txt" 2>&1
-            grep -E "PASS|FAIL|error|front RMS" "$out/$name.txt" | cut -c1-150
-        done
+    # Each entry name|weir validate options (commas inside options are the ladders').
+    while IFS='|' read -r name opts; do
+        [ -z "$name" ] && continue
+        echo "== validate-$name: $opts"
+        # shellcheck disable=SC2086
+        timeout "${VALIDATE_TIMEOUT:-300}" ./build-gpu/weir validate --backend cuda --no-plot \
+            $opts -o "$out/validate-$name" >"$out/validate-$name.txt" 2>&1
+        grep -E "PASS|FAIL|error|front RMS|decay" "$out/validate-$name.txt" | cut -c1-150
+    done <<<"${VALIDATIONS:-dam-break-r3|--smoothing-ratio 3 --cases dam-break --column-resolution 20,40,80,160}"
+fi
+if has bench; then
+    # The dam break timed by weir bench at each ratio in BENCH_RATIOS (delta-SPH), then the
+    # reference step in the same call.
+    for r in ${BENCH_RATIOS:-2 3}; do
+        $py - "$r" <<'PY'
+import json, sys
+s = json.load(open("scenes/dam_break.json"))
+s.setdefault("particles", {})["smoothingRatio"] = float(sys.argv[1])
+s["name"] = "dam_break_r" + sys.argv[1]
+json.dump(s, open("/tmp/dam_break_r%s.json" % sys.argv[1], "w"))
+PY
+        ./build-gpu/weir bench "/tmp/dam_break_r$r.json" --model delta-sph --sizes "${BENCH_SIZES:-100k,1M}" \
+            --backends cuda-dense --steps 30 --no-plot --no-render -o "$out/bench-r$r" \
+            >"$out/bench-r$r.txt" 2>&1
+        echo "== bench ratio $r"; grep -E "full step|simulated second|particles" "$out/bench-r$r.txt" | head -12
     done
+    [ -d .device/gpu-reference ] && bash .device/gpu-reference/run.sh 100000 1000000 2>&1 | tee "$out/reference.txt" | tail -4
 fi
 nvidia-smi -q -d PERFORMANCE | grep -A12 "Clocks Event Reasons" | grep -v "Not Active" >"$out/throttle.txt"
 cat "$out/throttle.txt"

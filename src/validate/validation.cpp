@@ -79,6 +79,13 @@ struct CaseScene {
     std::optional<double> smoothingRatio;  // particles.smoothingRatio; unset: the default
 };
 
+// A periodic slab's depth in spacings: `atLeast`, or more where the smoothing ratio asked for
+// needs it (a periodic axis at least two smoothing radii long: checkPeriodicLengths).
+double slabSpacings(const ValidationOptions& o, double atLeast = 4) {
+    const double ratio = o.smoothingRatio.value_or(Scene{}.smoothingRatio);
+    return 2 * ratio <= atLeast ? atLeast : std::floor(2 * ratio) + 1;
+}
+
 std::string sceneJson(const CaseScene& c) {
     auto flag = [](bool b) { return std::string(b ? "true" : "false"); };
     return R"({"name": "validate_)" + c.name + R"(", "container": {"min": [0, 0, 0], "max": )" +
@@ -251,11 +258,11 @@ void runTank(const ValidationOptions& o, ValidationReport& r) {
                         4 * kStraySpeedTolerance, ""});
 }
 
-// Martin & Moyce's column (width a, height n^2 a) of `preset` fluid in a slab 4 d deep, periodic
+// Martin & Moyce's column (width a, height n^2 a) of `preset` fluid in a slab 4 d deep (slabSpacings), periodic
 // across it (a plane flow, as the experiment's), with the walls' own slip condition.
 FrontRun runDamBreak(const ValidationOptions& o, int resolution, const std::string& preset) {
     const double a = kMartinMoyceWidth, d = a / resolution;
-    const double height = kMartinMoyceHeightRatio * a, depth = 4 * d;
+    const double height = kMartinMoyceHeightRatio * a, depth = slabSpacings(o) * d;
     const double timeScale = std::sqrt(2 * kG / a);  // T = t sqrt(2 g / a)
     const double endTime = o.damEndT / timeScale;
     const double length = a * (1.5 + 1.4 * o.damEndT);  // past the front at the end
@@ -398,7 +405,7 @@ void runViscous(const ValidationOptions& o, ValidationReport& r) {
 ChannelRun runChannel(const ValidationOptions& o, const std::string& flow) {
     const double L = 1e-3, nu = 1e-6, F = 1e-4, scale = F * L * L / (8 * nu);
     const int n = o.channelResolution;
-    const double d = L / n, lx = 8 * d, lz = 6 * d, c = 10 * scale;
+    const double d = L / n, lx = slabSpacings(o, 8) * d, lz = slabSpacings(o, 6) * d, c = 10 * scale;
     const bool poiseuille = flow == "poiseuille";
     CaseScene spec{flow, {lx, L, lz}, {lx, L, lz}, {true, false, true}};
     spec.fluid = fluidJson("water", o, R"(, "viscosity": 0.001, "stiffness": )" + num(c * c));
@@ -478,7 +485,7 @@ void runChannels(const ValidationOptions& o, ValidationReport& r) {
 // Lobovsky et al. (2014), H = 300 mm: a column L = 0.6 m long and H = 0.3 m high against the
 // back wall of a tank 1.61 m long, released by a gate at x = 0.6 m (its measured opening is the
 // experiment's time origin); the impact wall at x = 1.61 m carries pressure sensors 2, 3 and 4 at
-// 15, 30 and 80 mm. A plane flow: the slab is 4 d deep and periodic across. Reference (their
+// 15, 30 and 80 mm. A plane flow: the slab is 4 d deep (slabSpacings) and periodic across. Reference (their
 // ETSIN front and ~100-repetition pressure percentiles, as distributed with AQUAgpusph; facts):
 // the front's (x - gate) / H against tau = t sqrt(g / H), and the filtered pressure peaks.
 struct LobovskyFrontPoint {
@@ -498,7 +505,8 @@ constexpr PressureBand kLobovskyPeaks[] = {{1.7710, 1.8708, 2.0316},   // sensor
 constexpr double kLobovskySensorHeight[] = {0.015, 0.030, 0.080};
 
 void runLobovsky(const ValidationOptions& o, ValidationReport& r) {
-    const double H = 0.3, L = 0.6, length = 1.61, d = H / o.lobovskyResolution, depth = 4 * d;
+    const double H = 0.3, L = 0.6, length = 1.61, d = H / o.lobovskyResolution,
+                 depth = slabSpacings(o) * d;
     const double tauScale = std::sqrt(kG / H), travel = (length - L) / H;
     const double endTau = 6.5;
     CaseScene spec{"lobovsky", {length, 0.6, depth}, {L, H, depth}, {false, false, true}};
@@ -602,7 +610,7 @@ void runLobovsky(const ValidationOptions& o, ValidationReport& r) {
 }
 
 // The 2-D Taylor-Green vortex at Re = U L / nu = 100 in a periodic box (L = 1 m, U = 1 m/s,
-// water's density, nu = 0.01 m^2/s, a slab 4 d deep, periodic on every axis, no gravity, speed
+// water's density, nu = 0.01 m^2/s, a slab 4 d deep (slabSpacings), periodic on every axis, no gravity, speed
 // of sound 10 U): u = -U cos(2 pi x / L) sin(2 pi y / L), v = U sin(2 pi x / L) cos(2 pi y / L),
 // with the analytic pressure's density at t = 0. Its kinetic energy decays as exp(2 b t),
 // b = -8 pi^2 nu / L^2; the rate is fitted (least squares of ln E) over t = 0.25 to 2 L / U.
@@ -612,7 +620,7 @@ TaylorGreenRun runTaylorGreenAt(const ValidationOptions& options, int n, double 
     ValidationOptions o = options;
     o.shifting = options.shifting.value_or(1.0);
     const double L = 1, U = 1, nu = 0.01, rho0 = 1000, c = 10 * U;
-    const double d = L / n, depth = 4 * d;
+    const double d = L / n, depth = slabSpacings(o) * d;
     CaseScene spec{"taylor_green", {L, L, depth}, {L, L, depth}, {true, true, true}};
     spec.fluid = fluidJson(
         "water", o, R"(, "viscosity": )" + num(rho0 * nu) + R"(, "stiffness": )" + num(c * c));
