@@ -5,7 +5,7 @@
 # name|options) and the dam break's step timed at the ratios in BENCH_RATIOS beside the
 # reference. Results under $OUT (default gpu-out).
 # Usage: FLUMES="0.03:0.005:2:0 ..." VALIDATIONS=$'a|--cases ...\nb|...' bash bench/gpu_waves.sh
-#   each flume width:spacing:ratio:shifting[:periodic]; PARTS picks build, flumes, validate, bench.
+#   each flume width:spacing:ratio:shifting[:periodic 0|1[:duration s]]; PARTS picks build, flumes, validate, bench.
 set -uo pipefail
 out=$(realpath -m "${OUT:-gpu-out}")
 parts=" ${PARTS:-build flumes validate bench} "
@@ -14,18 +14,26 @@ mkdir -p "$out"
 py=python3
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee "$out/gpu.txt"
 if has build; then
+    targets=${TARGETS:-weir}
     cmake -S . -B build-gpu -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CUDA_ARCHITECTURES=90 \
         -DWEIR_ENABLE_PYTHON=OFF >/tmp/weir-configure.log 2>&1 ||
         { tail -30 /tmp/weir-configure.log; exit 1; }
-    ninja -C build-gpu -j"$(nproc)" weir >/tmp/weir-build.log 2>&1 ||
+    # shellcheck disable=SC2086
+    ninja -C build-gpu -j"$(nproc)" $targets >/tmp/weir-build.log 2>&1 ||
         { grep -E "error" -A3 /tmp/weir-build.log | head -40; exit 1; }
+fi
+if has test; then
+    OMP_NUM_THREADS=16 timeout "${TEST_TIMEOUT:-300}" ./build-gpu/weir_tests \
+        --gtest_filter="${TEST_FILTER:-*Cuda*:*cuda*:*Gpu*}" >"$out/gpu-tests.log" 2>&1
+    grep -E "^\[ +(FAILED|SKIPPED) |Failure|PASSED|FAILED TEST|piston wave maker" "$out/gpu-tests.log" | head -40
 fi
 if has flumes; then
     for f in ${FLUMES:-0.03:0.005:2:0}; do
-        IFS=: read -r width spacing ratio shifting periodic <<<"$f"
-        name="flume-w${width}-d${spacing}-r${ratio}-s${shifting}${periodic:+-periodic}"
+        IFS=: read -r width spacing ratio shifting periodic duration <<<"$f"
+        name="flume-w${width}-d${spacing}-r${ratio}-s${shifting}$([ "${periodic:-0}" = 1 ] && echo -periodic)"
         $py bench/wave_flume.py scene "/tmp/$name.json" --width "$width" --spacing "$spacing" \
-            --ratio "$ratio" --shifting "$shifting" ${periodic:+--periodic-z}
+            --ratio "$ratio" --shifting "$shifting" --duration "${duration:-4}" \
+            $([ "${periodic:-0}" = 1 ] && echo --periodic-z)
         cp "/tmp/$name.json" "$out/"
         timeout "${FLUME_TIMEOUT:-240}" ./build-gpu/weir run "/tmp/$name.json" --format ply \
             --overwrite -o "/tmp/$name" >"$out/$name.log" 2>&1

@@ -955,8 +955,6 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
         scene.particleCount = static_cast<std::int64_t>(*count);
     }
     scene.spacing = particles.optionalNumber("spacing", kLength);
-    scene.smoothingRatio =
-        particles.number("smoothingRatio", between(1.2, 5), scene.smoothingRatio);
 
     scene.gravity = top.vec3("gravity", scene.gravity, kGravity);
 
@@ -1045,6 +1043,9 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
         top.fail("solver", top.written("solver"),
                  allowed.substr(allowed.find("allowed are ") + 12));
     }
+    // After the model and the solver, whose default it follows.
+    scene.smoothingRatio = particles.number("smoothingRatio", between(1.2, 5),
+                                            defaultSmoothingRatio(scene.model, scene.solver));
     FieldReader dfsph =
         top.object("dfsph", {"densityError", "divergenceError", "maxSweeps", "cfl"});
     Scene::DfsphSettings& settings = scene.dfsph;
@@ -1129,6 +1130,10 @@ Scene withFluidModel(const Scene& scene, const std::string& model) {
     Json root = Json::parse(scene.json);
     root["fluid"]["model"] = model;
     return parseSceneNamed(root.dump(), scene.sourcePath, scene.name);
+}
+
+double defaultSmoothingRatio(FluidModelName model, const std::string& solver) {
+    return model == FluidModelName::DeltaSph && (solver.empty() || solver == "wcsph") ? 3.0 : 2.0;
 }
 
 Scene withSolver(const Scene& scene, const std::string& solver) {

@@ -170,7 +170,8 @@ struct Scene {
     // "particles": {"spacing": s} or {"count": n} (exactly one; neither: count 20000)
     std::optional<double> spacing;              // metres, > 0
     std::optional<std::int64_t> particleCount;  // > 0
-    double smoothingRatio = 2.0;  // "particles.smoothingRatio": h / spacing, in [1.2, 5]
+    // "particles.smoothingRatio": h / spacing, in [1.2, 5]; unset: defaultSmoothingRatio
+    double smoothingRatio = 2.0;
 
     Vec3d gravity{0.0, -9.81, 0.0};  // "gravity": [gx, gy, gz], m/s^2
 
@@ -207,6 +208,14 @@ struct Scene {
         double cfl = 0.4;                     // "cfl": dt <= cfl d / max |v|
     } dfsph;
 };
+
+// The smoothing ratio h / d (h the kernel's support) of a scene that does not give
+// particles.smoothingRatio. 3 for the delta-SPH model under WCSPH: Wendland C2 over 2 d has about
+// 33 neighbours, too few for small waves (a piston's 26 mm wave lost 80% of its height within
+// 1 m at 2 d, none at 3 d; measured on an H200, docs/physics.md). 2 for the paper's model (its
+// kernels at its h, so Tables 1-3 stay the paper's) and for DFSPH (its Jacobi sweeps blew up at
+// 3 d in the stability sweep, docs/dfsph.md).
+double defaultSmoothingRatio(FluidModelName model, const std::string& solver);
 
 // Reads and validates a scene file; throws SceneError naming file, field, value, allowed range.
 Scene loadScene(const std::string& path);

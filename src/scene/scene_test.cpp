@@ -104,7 +104,7 @@ TEST(Scene, OmittedFieldsTakeDefaults) {
     EXPECT_FALSE(s.stiffness);
     EXPECT_FALSE(s.particleCount);
     EXPECT_FALSE(s.spacing);
-    EXPECT_DOUBLE_EQ(s.smoothingRatio, 2.0);
+    EXPECT_DOUBLE_EQ(s.smoothingRatio, 3.0);  // delta-SPH's (defaultSmoothingRatio)
     expectVec(s.gravity, 0, -9.81, 0);
     EXPECT_DOUBLE_EQ(s.duration, 2.0);
     EXPECT_DOUBLE_EQ(s.frameRate, 30);
@@ -123,6 +123,24 @@ TEST(Scene, SpacingInsteadOfCountAndSpheresOnly) {
     EXPECT_EQ(s.spacing, 0.01);
     EXPECT_FALSE(s.particleCount);
     EXPECT_EQ(s.spheres.size(), 1u);  // touching the walls counts as inside
+}
+
+// The smoothing ratio follows the model and the solver unless the scene gives one: 3 for
+// delta-SPH under WCSPH (enough neighbours for small waves), 2 for the paper's model and DFSPH;
+// re-reading the scene with another model or solver follows it too.
+TEST(Scene, SmoothingRatioFollowsTheModelAndSolverUnlessGiven) {
+    const std::string base = R"({"container": {"min": [0, 0, 0], "max": [1, 1, 1]},
+                             "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}])";
+    const Scene delta = parseScene(base + "}", "r.json");
+    EXPECT_DOUBLE_EQ(delta.smoothingRatio, 3.0);
+    EXPECT_DOUBLE_EQ(parseScene(base + R"(, "fluid": {"model": "paper"}})", "r.json").smoothingRatio,
+                     2.0);
+    EXPECT_DOUBLE_EQ(parseScene(base + R"(, "solver": "dfsph"})", "r.json").smoothingRatio, 2.0);
+    EXPECT_DOUBLE_EQ(withFluidModel(delta, "paper").smoothingRatio, 2.0);
+    EXPECT_DOUBLE_EQ(withSolver(delta, "dfsph").smoothingRatio, 2.0);
+    const Scene given =
+        parseScene(base + R"(, "particles": {"count": 100, "smoothingRatio": 2.5}})", "r.json");
+    EXPECT_DOUBLE_EQ(withFluidModel(given, "paper").smoothingRatio, 2.5);
 }
 
 TEST(Scene, CommentsAreAllowed) {
@@ -144,7 +162,7 @@ TEST(Scene, ShippedDamBreak) {
     expectVec(s.blocks[0].box.max, 0.4, 0.6, 0.6);
     EXPECT_TRUE(s.spheres.empty());
     EXPECT_EQ(s.particleCount, 20000);
-    EXPECT_DOUBLE_EQ(s.smoothingRatio, 2.0);
+    EXPECT_DOUBLE_EQ(s.smoothingRatio, 3.0);  // the model's default: the scene gives none
     expectVec(s.gravity, 0, -9.81, 0);
     EXPECT_DOUBLE_EQ(s.duration, 2.0);
     EXPECT_DOUBLE_EQ(s.frameRate, 30);

@@ -33,7 +33,7 @@ inline void checkPeriodicLengths(const SphParams& params) {
     for (int a = 0; a < 3; ++a) {
         const double length = double(params.boxMax[a]) - double(params.boxMin[a]);
         const double h = double(params.kernel.h);
-        if (isPeriodic(params, a) && length < 2 * h) {
+        if (isPeriodic(params, a) && length < 2 * h * (1 - 1e-6)) {  // equal, less rounding
             std::ostringstream msg;
             msg << "container.periodic: the container is " << length << " m long along " << kAxis[a]
                 << ", but a periodic axis needs at least two smoothing radii (2 h = " << 2 * h

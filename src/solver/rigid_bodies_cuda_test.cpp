@@ -67,18 +67,13 @@ TEST(RigidBodiesCuda, AgreesWithCpu) {
 // walls; period 1 s (k h = 1.37), stroke 2 cm: H = 2.6 cm, 5 particle spacings. The height is
 // measured 1.5 m from the piston (a wavelength and more: the evanescent modes are gone) over two
 // periods after the train has arrived and before the far wall's reflection returns (t = 3 to 5 s;
-// the reflection is back at 7 s at the group speed 0.93 m/s). GPU only: about 50 000 steps of
-// 290 000 particles.
-// DISABLED: it fails. On an H200 (7acdb4a) it measured H = 0.9 mm at the probe against 26 mm.
-// On the CPU at d = 0.01 m the same piston makes waves of the right height next to it (26 mm at
-// 0.2 m after the ramp), and their crests shrink as they run down the flume (12, 9, 6, 3.5 mm
-// above still water at 0.2, 0.4, 0.6, 0.8 m in the train's front); whether the train decays or
-// only its front is low was not settled. Until 2026-12-03 the piston's stroke took its back 5 mm
-// past the end wall (the scene reader now refuses that); with the piston clear of the wall the
-// H200 still measured 0.86 mm here. A slab 1.5 cm wide keeps the wave (28 and 20 mm at 0.5 and
-// 1.0 m at d = 5 mm), 3 and 6 cm do not (16 and 6 mm): docs/bodies.md. Enabled again once it
-// passes (issue 14's fidelity work, issue 18).
-TEST(RigidBodiesCuda, DISABLED_PistonWaveHeightFollowsLinearTheory) {
+// the reflection is back at 7 s at the group speed 0.93 m/s). GPU only: about 35 000 steps of
+// 290 000 particles at the default smoothing ratio 3.
+// At smoothing ratio 2 (the default until 2026-12-03) the wave died down the flume: 0.9 mm here,
+// 16 and 6 mm at 0.5 and 1.0 m. Wendland C2 over 2 d gives each particle about 33 neighbours, too
+// few to carry a small wave through particle disorder (Colagrossi et al. 2013); at 3 d (about
+// 110) the H200 measured 24-25 mm at 0.5 and 1.55 m, at 4 d 25-27 mm (docs/physics.md).
+TEST(RigidBodiesCuda, PistonWaveHeightFollowsLinearTheory) {
     if (!cudaDeviceAvailable()) {
         GTEST_SKIP() << "no CUDA device visible";
     }

@@ -79,11 +79,12 @@ struct CaseScene {
     std::optional<double> smoothingRatio;  // particles.smoothingRatio; unset: the default
 };
 
-// A periodic slab's depth in spacings: `atLeast`, or more where the smoothing ratio asked for
-// needs it (a periodic axis at least two smoothing radii long: checkPeriodicLengths).
+// A periodic slab's depth in spacings: `atLeast`, or more where the smoothing ratio needs it (a
+// periodic axis at least two smoothing radii long: checkPeriodicLengths).
 double slabSpacings(const ValidationOptions& o, double atLeast = 4) {
-    const double ratio = o.smoothingRatio.value_or(Scene{}.smoothingRatio);
-    return 2 * ratio <= atLeast ? atLeast : std::floor(2 * ratio) + 1;
+    const double ratio = o.smoothingRatio.value_or(defaultSmoothingRatio(
+        o.model == "paper" ? FluidModelName::Paper : FluidModelName::DeltaSph, o.solver));
+    return std::max(atLeast, std::ceil(2 * ratio - 1e-9));
 }
 
 std::string sceneJson(const CaseScene& c) {
@@ -133,9 +134,10 @@ void say(const ValidationOptions& o, const std::string& line) {
     }
 }
 
-// A tank of water depth H, width H and a slab 6 d deep, walls of boundary particles.
+// A tank of water depth H, width H and a slab 6 d deep (more where the smoothing ratio needs it
+// for interior layers h from every wall), walls of boundary particles.
 void runTank(const ValidationOptions& o, ValidationReport& r) {
-    const double H = 0.3, d = H / o.tankResolution, W = 6 * d;
+    const double H = 0.3, d = H / o.tankResolution, W = std::max(6.0, slabSpacings(o) + 2) * d;
     CaseScene spec{"hydrostatic", {H, 1.5 * H, W}, {H, H, W}};
     spec.fluid = fluidJson("water", o);
     spec.spacing = d;
