@@ -588,7 +588,7 @@ TEST(Setup, ContainerPastTheSetupCellLimitIsRejected) {
             "container": {"min": [0, 0, 0], "max": [)" +
                width + R"(, 0.1, 0.1]},
             "blocks": [{"min": [0, 0, 0], "max": [0.02, 0.02, 0.02]}],
-            "particles": {"spacing": 0.005}
+            "particles": {"spacing": 0.005, "smoothingRatio": 2}
         })";
     };
     SimulationSetup fits = buildSetup(parseScene(scene("10.24"), "<fits>"), {}, nullptr);

@@ -283,7 +283,7 @@ TEST(Periodic, DeltaSphChannelReachesThePoiseuilleProfile) {
                       "periodic": [true, false, true]},
         "blocks": [{"min": [0, 0, 0], "max": [0.024, 0.04, 0.016]}],
         "fluid": {"preset": "honey", "model": "delta-sph"},
-        "particles": {"spacing": 0.004},
+        "particles": {"spacing": 0.004, "smoothingRatio": 2},
         "gravity": [2, 0, 0],
         "walls": {"model": "particles"}
     })",

@@ -42,7 +42,7 @@ TEST(Solver, GridPast1024CellsUsesWideIdsAndMatchesBruteForce) {
     Scene scene = parseScene(R"({
         "container": {"min": [-10.24, 0, 0], "max": [0.26, 0.1, 0.1]},
         "blocks": [{"min": [-0.04, 0, 0], "max": [0.02, 0.05, 0.04], "velocity": [1, 0, 0]}],
-        "particles": {"spacing": 0.005}
+        "particles": {"spacing": 0.005, "smoothingRatio": 2}
     })",
                              "<test long container>");
     SetupReport report;
