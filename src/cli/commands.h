@@ -77,9 +77,9 @@ struct ValidateOptions {
     int channelResolution = 20;                   // particles across the channel
     int lobovskyResolution = 20;                  // particles over the Lobovsky column's height
     std::vector<int> taylorGreenResolutions{32};  // particles across the Taylor-Green box
-    double shifting = -1;     // fluid.shifting of every case (delta-sph); < 0: the default
+    double shifting = -1;        // fluid.shifting of every case (delta-sph); < 0: the default
     double smoothingRatio = -1;  // particles.smoothingRatio of every case; < 0: the default
-    int tankResolution = 24;  // particles over the tank's water depth
+    int tankResolution = 24;     // particles over the tank's water depth
     std::vector<int> columnResolutions{12};  // particles across the dam-break column (a ladder)
     double damEndT = 5.0;                    // dimensionless end time T = t sqrt(2 g / a)
     std::string outDir = "validate-out";

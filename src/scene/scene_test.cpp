@@ -133,8 +133,8 @@ TEST(Scene, SmoothingRatioFollowsTheModelAndSolverUnlessGiven) {
                              "blocks": [{"min": [0, 0, 0], "max": [1, 0.5, 1]}])";
     const Scene delta = parseScene(base + "}", "r.json");
     EXPECT_DOUBLE_EQ(delta.smoothingRatio, 3.0);
-    EXPECT_DOUBLE_EQ(parseScene(base + R"(, "fluid": {"model": "paper"}})", "r.json").smoothingRatio,
-                     2.0);
+    EXPECT_DOUBLE_EQ(
+        parseScene(base + R"(, "fluid": {"model": "paper"}})", "r.json").smoothingRatio, 2.0);
     EXPECT_DOUBLE_EQ(parseScene(base + R"(, "solver": "dfsph"})", "r.json").smoothingRatio, 2.0);
     EXPECT_DOUBLE_EQ(withFluidModel(delta, "paper").smoothingRatio, 2.0);
     EXPECT_DOUBLE_EQ(withSolver(delta, "dfsph").smoothingRatio, 2.0);

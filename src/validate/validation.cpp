@@ -260,8 +260,9 @@ void runTank(const ValidationOptions& o, ValidationReport& r) {
                         4 * kStraySpeedTolerance, ""});
 }
 
-// Martin & Moyce's column (width a, height n^2 a) of `preset` fluid in a slab 4 d deep (slabSpacings), periodic
-// across it (a plane flow, as the experiment's), with the walls' own slip condition.
+// Martin & Moyce's column (width a, height n^2 a) of `preset` fluid in a slab 4 d deep
+// (slabSpacings), periodic across it (a plane flow, as the experiment's), with the walls' own slip
+// condition.
 FrontRun runDamBreak(const ValidationOptions& o, int resolution, const std::string& preset) {
     const double a = kMartinMoyceWidth, d = a / resolution;
     const double height = kMartinMoyceHeightRatio * a, depth = slabSpacings(o) * d;
@@ -407,7 +408,8 @@ void runViscous(const ValidationOptions& o, ValidationReport& r) {
 ChannelRun runChannel(const ValidationOptions& o, const std::string& flow) {
     const double L = 1e-3, nu = 1e-6, F = 1e-4, scale = F * L * L / (8 * nu);
     const int n = o.channelResolution;
-    const double d = L / n, lx = slabSpacings(o, 8) * d, lz = slabSpacings(o, 6) * d, c = 10 * scale;
+    const double d = L / n, lx = slabSpacings(o, 8) * d, lz = slabSpacings(o, 6) * d,
+                 c = 10 * scale;
     const bool poiseuille = flow == "poiseuille";
     CaseScene spec{flow, {lx, L, lz}, {lx, L, lz}, {true, false, true}};
     spec.fluid = fluidJson("water", o, R"(, "viscosity": 0.001, "stiffness": )" + num(c * c));
@@ -487,9 +489,10 @@ void runChannels(const ValidationOptions& o, ValidationReport& r) {
 // Lobovsky et al. (2014), H = 300 mm: a column L = 0.6 m long and H = 0.3 m high against the
 // back wall of a tank 1.61 m long, released by a gate at x = 0.6 m (its measured opening is the
 // experiment's time origin); the impact wall at x = 1.61 m carries pressure sensors 2, 3 and 4 at
-// 15, 30 and 80 mm. A plane flow: the slab is 4 d deep (slabSpacings) and periodic across. Reference (their
-// ETSIN front and ~100-repetition pressure percentiles, as distributed with AQUAgpusph; facts):
-// the front's (x - gate) / H against tau = t sqrt(g / H), and the filtered pressure peaks.
+// 15, 30 and 80 mm. A plane flow: the slab is 4 d deep (slabSpacings) and periodic across.
+// Reference (their ETSIN front and ~100-repetition pressure percentiles, as distributed with
+// AQUAgpusph; facts): the front's (x - gate) / H against tau = t sqrt(g / H), and the filtered
+// pressure peaks.
 struct LobovskyFrontPoint {
     double tau, x;
 };
@@ -612,12 +615,12 @@ void runLobovsky(const ValidationOptions& o, ValidationReport& r) {
 }
 
 // The 2-D Taylor-Green vortex at Re = U L / nu = 100 in a periodic box (L = 1 m, U = 1 m/s,
-// water's density, nu = 0.01 m^2/s, a slab 4 d deep (slabSpacings), periodic on every axis, no gravity, speed
-// of sound 10 U): u = -U cos(2 pi x / L) sin(2 pi y / L), v = U sin(2 pi x / L) cos(2 pi y / L),
-// with the analytic pressure's density at t = 0. Its kinetic energy decays as exp(2 b t),
-// b = -8 pi^2 nu / L^2; the rate is fitted (least squares of ln E) over t = 0.25 to 2 L / U.
-// The vortex runs with particle shifting on (fluid.shifting 1) unless --shifting says otherwise:
-// without it the lattice tears at the stagnation points (docs/physics.md).
+// water's density, nu = 0.01 m^2/s, a slab 4 d deep (slabSpacings), periodic on every axis, no
+// gravity, speed of sound 10 U): u = -U cos(2 pi x / L) sin(2 pi y / L), v = U sin(2 pi x / L)
+// cos(2 pi y / L), with the analytic pressure's density at t = 0. Its kinetic energy decays as
+// exp(2 b t), b = -8 pi^2 nu / L^2; the rate is fitted (least squares of ln E) over t = 0.25 to 2 L
+// / U. The vortex runs with particle shifting on (fluid.shifting 1) unless --shifting says
+// otherwise: without it the lattice tears at the stagnation points (docs/physics.md).
 TaylorGreenRun runTaylorGreenAt(const ValidationOptions& options, int n, double decayReference) {
     ValidationOptions o = options;
     o.shifting = options.shifting.value_or(1.0);

@@ -20,9 +20,9 @@ struct ValidationOptions {
     std::string solver;  // pressure solver of every case: "" (the scenes' default), "wcsph",
                          // "dfsph"
     std::optional<double> shifting;  // fluid.shifting of every case (delta-sph); unset: default
-    std::optional<double> smoothingRatio;  // particles.smoothingRatio (h / d) of every case;
-                                           // unset: the default
-    int tankResolution = 24;         // particles over the tank's water depth
+    std::optional<double> smoothingRatio;    // particles.smoothingRatio (h / d) of every case;
+                                             // unset: the default
+    int tankResolution = 24;                 // particles over the tank's water depth
     std::vector<int> columnResolutions{12};  // particles across the column, coarse to fine: the
                                              // ladder; the finest is held to the tolerances
     double settleTime = 1.0;                 // s of tank simulation; the last 40% are averaged
