@@ -380,10 +380,10 @@ TEST_F(Cli, ExplainPrintsTheDerivation) {
     ASSERT_EQ(explained.exitCode, 0) << explained.output;
     for (const char* line :
          {"fluid model delta-sph", "fluid model delta-SPH: ", "spacing d = 0.01 m (scene)",
-          "smoothing radius h = 0.02 m (2 d)", "particle mass m = ", "expected top speed",
+          "smoothing radius h = 0.03 m (3 d)", "particle mass m = ", "expected top speed",
           "stiffness k = ", "viscosity: the fluid's own mu = ", "time step ",
           "per frame at the expected speed; CFL", "0.25 h / (c + max|v|)", "blow-up bound",
-          "960 particles, grid 10 x 10 x 5 cells"}) {
+          "960 particles, grid 7 x 7 x 4 cells"}) {
         EXPECT_TRUE(contains(explained.output, line));
     }
     // The paper's model, one option away, derives its own.

@@ -106,7 +106,7 @@ def test_explain_gives_the_derived_parameters_and_the_clis_lines(tmp_path, cli):
     for key in ("spacing", "smoothing_radius", "speed_of_sound", "time_step", "stiffness",
                 "mass", "steps_per_frame", "frame_interval", "frames"):
         assert e[key] > 0, key
-    assert e["smoothing_radius"] == pytest.approx(2 * e["spacing"])
+    assert e["smoothing_radius"] == pytest.approx(3 * e["spacing"])  # delta-SPH's default ratio
     assert e["frame_interval"] == pytest.approx(1 / 30)
     assert e["particles"] == sim.particle_count and e["backend"] == "cpu"
     assert e["lines"], "no explanation"
