@@ -456,7 +456,7 @@ TEST_F(Cli, LongContainerRunsOnTheGridWithWideCellIds) {
     writeFile("long.json", withoutShifting(R"({
         "container": {"min": [0, 0, 0], "max": [10.25, 0.1, 0.1]},
         "blocks": [{"min": [0, 0, 0], "max": [0.04, 0.04, 0.04]}],
-        "particles": {"spacing": 0.005}
+        "particles": {"spacing": 0.005, "smoothingRatio": 2}
     })"));
     RunResult paper = weir("run long.json" + std::string(kCpu) + " --frames 1 --neighbours grid" +
                            " --out paper");
@@ -470,7 +470,7 @@ TEST_F(Cli, LongContainerRunsOnTheGridWithWideCellIds) {
     writeFile("fits.json", R"({
         "container": {"min": [0, 0, 0], "max": [10.24, 0.1, 0.1]},
         "blocks": [{"min": [0, 0, 0], "max": [0.04, 0.04, 0.04]}],
-        "particles": {"spacing": 0.005}
+        "particles": {"spacing": 0.005, "smoothingRatio": 2}
     })");
     RunResult fits =
         weir("run fits.json" + std::string(kCpu) + " --frames 1 --neighbours grid --out fits");

@@ -620,7 +620,7 @@ TEST(Setup, ContainerPastTheSetupCellLimitIsRejected) {
     Scene deep = parseScene(R"({
         "container": {"min": [0, 0, 0], "max": [0.2, 0.2, 12]},
         "blocks": [{"min": [0, 0, 0], "max": [0.1, 0.1, 0.1]}],
-        "particles": {"spacing": 0.1}
+        "particles": {"spacing": 0.1, "smoothingRatio": 2}
     })",
                             "deep.json");
     SetupOptions many;
