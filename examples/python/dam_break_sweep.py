@@ -5,7 +5,7 @@ resolutions (or viscosities), its surge front plotted against the experiment.
     python3 examples/python/dam_break_sweep.py --resolutions 8,12 --end-T 2 --out front.png
     python3 examples/python/dam_break_sweep.py --viscosities 0.001,0.1,1 --resolutions 12
 
-The column is a wide, 2a tall and four particles deep with periodic sides (a plane flow, as in
+The column is a wide, 2a tall and six particles deep with periodic sides (a plane flow, as in
 the experiment), water, walls of boundary particles: the case `weir validate` checks. The front
 is the furthest particle plus half a spacing, Z = front / a, against T = t sqrt(2 g / a).
 (docs/python.md walks through it.)
@@ -26,7 +26,7 @@ G = 9.81
 def column_scene(resolution, end_T, viscosity=None):
     """Martin & Moyce's column of width a and height 2a, `resolution` particles across."""
     d = A / resolution
-    height, depth = 2 * A, 4 * d
+    height, depth = 2 * A, 6 * d  # a periodic axis at least 2 h long (h = 3 d, the default)
     fluid = {"preset": "water", "restDensity": 1000}
     if viscosity is not None:
         fluid["viscosity"] = viscosity
