@@ -235,7 +235,30 @@ void writeBodies(std::ostream& out, const Scene& scene, const std::vector<UsdFra
             << orient << "            }\n"
             << "            uniform token[] xformOpOrder = [\"xformOp:translate\", "
                "\"xformOp:orient\"]\n";
-        if (body.isSphere) {
+        if (body.isMesh) {
+            const Vec3d c = body.centre();
+            const MeshObstacle& m = body.mesh;
+            out << "            def Mesh \"shape\"\n            {\n"
+                << "                int[] faceVertexCounts = ["
+                << joined(m.triangles.size(), [](std::size_t) { return std::string("3"); }) << "]\n"
+                << "                int[] faceVertexIndices = ["
+                << joined(m.triangles.size(),
+                          [&](std::size_t t) {
+                              return std::to_string(m.triangles[t][0]) + ", " +
+                                     std::to_string(m.triangles[t][1]) + ", " +
+                                     std::to_string(m.triangles[t][2]);
+                          })
+                << "]\n"
+                << "                point3f[] points = ["
+                << joined(m.vertices.size(),
+                          [&](std::size_t v) {
+                              const Vec3d p = m.vertices[v] - c;
+                              return vec(p.x, p.y, p.z);
+                          })
+                << "]\n"
+                << "                uniform token subdivisionScheme = \"none\"\n"
+                << "            }\n";
+        } else if (body.isSphere) {
             const double r = body.sphere.radius;
             out << "            def Sphere \"shape\"\n            {\n"
                 << "                float3[] extent = [" << vec(-r, -r, -r) << ", " << vec(r, r, r)

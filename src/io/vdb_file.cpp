@@ -244,6 +244,21 @@ void writeVdbFrame(const std::string& path, const HostParticles& particles,
     metadata.insertMeta("time", vdb::DoubleMetadata(options.time));
     metadata.insertMeta("creator", vdb::StringMetadata("weir"));
     metadata.insertMeta("particle_spacing", vdb::DoubleMetadata(spacing));
+    // The rigid bodies' poses (issue 18), as frames.json has them: body_K_position (centre of
+    // mass, m), body_K_orientation (quaternion x, y, z, w), body_K_velocity,
+    // body_K_angular_velocity.
+    metadata.insertMeta("body_count", vdb::Int32Metadata(int(particles.bodies.size())));
+    for (std::size_t k = 0; k < particles.bodies.size(); ++k) {
+        const BodyPose& b = particles.bodies[k];
+        const std::string name = "body_" + std::to_string(k) + "_";
+        auto vec3 = [](const Vec3d& v) { return vdb::Vec3DMetadata(vdb::Vec3d(v.x, v.y, v.z)); };
+        metadata.insertMeta(name + "position", vec3(b.position));
+        metadata.insertMeta(name + "orientation",
+                            vdb::Vec4DMetadata(vdb::Vec4d(b.orientation[0], b.orientation[1],
+                                                          b.orientation[2], b.orientation[3])));
+        metadata.insertMeta(name + "velocity", vec3(b.velocity));
+        metadata.insertMeta(name + "angular_velocity", vec3(b.angularVelocity));
+    }
     writeFileAtomicallyByName(path, [&](const std::string& tmpPath) {
         try {
             vdb::io::File file(tmpPath);
@@ -257,9 +272,49 @@ void writeVdbFrame(const std::string& path, const HostParticles& particles,
 
 namespace {
 
+// The bodies' poses from the file's metadata (none when body_count is absent: a frame of a
+// scene without bodies, or from before they were written).
+std::vector<BodyPose> readBodyPoses(const vdb::MetaMap& metadata, const std::string& path) {
+    std::vector<BodyPose> bodies;
+    const auto count = metadata.getMetadata<vdb::Int32Metadata>("body_count");
+    if (!count) {
+        return bodies;
+    }
+    if (count->value() < 0 || count->value() > 4096) {
+        unreadable(path,
+                   "body_count is " + std::to_string(count->value()) + ", must be within 0..4096");
+    }
+    for (int k = 0; k < count->value(); ++k) {
+        const std::string name = "body_" + std::to_string(k) + "_";
+        auto vec3 = [&](const std::string& key) {
+            const auto v = metadata.getMetadata<vdb::Vec3DMetadata>(name + key);
+            if (!v) {
+                unreadable(path, "body_count is " + std::to_string(count->value()) +
+                                     " but the metadata " + name + key + " is missing");
+            }
+            return Vec3d(v->value().x(), v->value().y(), v->value().z());
+        };
+        BodyPose pose;
+        pose.position = vec3("position");
+        pose.velocity = vec3("velocity");
+        pose.angularVelocity = vec3("angular_velocity");
+        const auto q = metadata.getMetadata<vdb::Vec4DMetadata>(name + "orientation");
+        if (!q) {
+            unreadable(path, "body_count is " + std::to_string(count->value()) +
+                                 " but the metadata " + name + "orientation is missing");
+        }
+        for (int c = 0; c < 4; ++c) {
+            pose.orientation[c] = q->value()[c];
+        }
+        bodies.push_back(pose);
+    }
+    return bodies;
+}
+
 HostParticles readVdbInProcess(const std::string& path, double* time) {
     std::vector<std::int64_t> ids;
     HostParticles particles;
+    std::vector<BodyPose> bodies;
     try {
         vdb::io::File file(path);
         file.open(false);  // read grids whole, not mapped: a file changed later cannot hurt
@@ -278,11 +333,12 @@ HostParticles readVdbInProcess(const std::string& path, double* time) {
                                  ", not a point data grid");
         }
         particles = readPoints(*grid, path, ids);
+        const vdb::MetaMap::Ptr metadata = file.getMetadata();
         if (time != nullptr) {
-            const vdb::MetaMap::Ptr metadata = file.getMetadata();
             const auto stored = metadata->getMetadata<vdb::DoubleMetadata>("time");
             *time = stored ? stored->value() : 0.0;
         }
+        bodies = readBodyPoses(*metadata, path);
         file.close();
     } catch (const IoError&) {
         throw;
@@ -291,6 +347,7 @@ HostParticles readVdbInProcess(const std::string& path, double* time) {
         unreadable(path, "not a readable OpenVDB file (" + shortened(e.what()) + ")");
     }
     orderParticlesById(particles, ids, path);
+    particles.bodies = std::move(bodies);
     return particles;
 }
 

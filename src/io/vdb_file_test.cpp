@@ -185,6 +185,33 @@ TEST(VdbFile, ReadsBackInIdOrder) {
     }
 }
 
+// The rigid bodies' poses travel in the file's metadata (issue 18), as frames.json has them.
+TEST(VdbFile, BodyPosesTravelInTheMetadata) {
+    TempDir dir;
+    HostParticles particles = block();
+    BodyPose a, b;
+    a.position = Vec3d(0.1, 0.2, 0.3);
+    a.orientation[0] = 0.6;
+    a.orientation[3] = 0.8;
+    a.velocity = Vec3d(1, -2, 3);
+    a.angularVelocity = Vec3d(0, 0, 4);
+    b.position = Vec3d(-1, 5, 2);
+    particles.bodies = {a, b};
+    writeVdbFrame(dir / "f.vdb", particles, {0.5, kSpacing, 0, 3});
+    const HostParticles read = readVdbFrame(dir / "f.vdb");
+    ASSERT_EQ(read.bodies.size(), 2u);
+    EXPECT_EQ(read.bodies[0].position.y, 0.2);
+    EXPECT_EQ(read.bodies[0].orientation[0], 0.6);
+    EXPECT_EQ(read.bodies[0].orientation[3], 0.8);
+    EXPECT_EQ(read.bodies[0].velocity.z, 3);
+    EXPECT_EQ(read.bodies[0].angularVelocity.z, 4);
+    EXPECT_EQ(read.bodies[1].position.x, -1);
+    EXPECT_EQ(read.bodies[1].orientation[3], 1);
+    // A frame without bodies reads back without any.
+    writeVdbFrame(dir / "g.vdb", block(), {0.5, kSpacing, 0, 3});
+    EXPECT_TRUE(readVdbFrame(dir / "g.vdb").bodies.empty());
+}
+
 TEST(VdbFile, TruncatedOrForeignFilesAreRefusedNamingTheFile) {
     TempDir dir;
     writeVdbFrame(dir / "f.vdb", block(), {0, kSpacing, 0, 3});

@@ -45,7 +45,17 @@ WEIR_HD inline void addFluidMomentum(const SphParams& p, const Vec3& rVec, Real 
     const Real vDotR = dot(vij, rVec);
     const Real softened = reciprocal(r2 + p.viscositySoftening);
     // Pressure, then viscosity: the fluid's own (Morris) and, approaching, the artificial one.
-    Real alongR = -p.mass * (termI + termJ) * g;
+    // Under tension (p < 0) a pair attracts, and Wendland's gradient, zero at r = 0, would not
+    // stop two particles closing onto one point: Monaghan's (2000) artificial pressure adds a
+    // repulsion that grows as (W / W(h / 3))^4 once they are closer than h / 3 (d at h = 3 d).
+    Real pairTerm = termI + termJ;
+    const Real tension = p.tensileCorrection * ((termI < Real(0) ? -termI : Real(0)) +
+                                                (termJ < Real(0) ? -termJ : Real(0)));
+    if (tension > Real(0)) {
+        const Real f = p.wendland.value(r) * p.invKernelAtReference, f2 = f * f;
+        pairTerm += tension * f2 * f2;
+    }
+    Real alongR = -p.mass * pairTerm * g;
     if (vDotR < Real(0)) {
         alongR += p.artificialViscosity * vDotR * softened * Real(2) * p.mass *
                   reciprocal(rhoi + rhoj) * g;

@@ -18,11 +18,12 @@ enum class FaultCode : int {
 };
 
 struct FaultRecord {
-    int code;      // FaultCode
-    int step;      // step number at which it happened
-    int particle;  // index in cell order at that step
-    float value;   // speed for TooFast, rho / rho0 for Compressed
-    float time;    // simulated time at the end of that step, s
+    int code;       // FaultCode
+    int step;       // step number at which it happened
+    int particle;   // index in cell order at that step
+    float value;    // speed for TooFast, rho / rho0 for Compressed
+    float time;     // simulated time at the end of that step, s
+    float x, y, z;  // where the particle was, m
 };
 
 // True for the one thread that records the run's first fault.

@@ -56,13 +56,17 @@ WEIR_HD inline void advanceParticle(Vec3& x, Vec3& v, const Vec3& a, Index i,
         fault->particle = i;
         fault->value = float(std::sqrt(speed2));
         fault->time = float(clock->time + double(dt));
+        fault->x = float(x.x);
+        fault->y = float(x.y);
+        fault->z = float(x.z);
     }
 }
 
 // Records a fault for a density past the bound or particles on one point (the first fault of the
-// run wins; dt of the current step for its time).
-WEIR_HD inline void checkDensity(Real rho, bool collapsed, Index i, const SphParams& params,
-                                 FaultRecord* fault, const StepClock* clock) {
+// run wins; dt of the current step for its time); x is where the particle is.
+WEIR_HD inline void checkDensity(Real rho, bool collapsed, Index i, const Vec3& x,
+                                 const SphParams& params, FaultRecord* fault,
+                                 const StepClock* clock) {
     FaultCode code = FaultCode::None;
     if (collapsed) {
         code = FaultCode::Collapsed;
@@ -75,6 +79,9 @@ WEIR_HD inline void checkDensity(Real rho, bool collapsed, Index i, const SphPar
         fault->particle = i;
         fault->value = float(rho * params.invRestDensity);
         fault->time = float(clock->time + double(clock->dt));
+        fault->x = float(x.x);
+        fault->y = float(x.y);
+        fault->z = float(x.z);
     }
 }
 

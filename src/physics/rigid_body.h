@@ -1,16 +1,16 @@
-// Rigid bodies in the fluid (issue 18), written once for CPU and CUDA: a body is a box or a
-// sphere whose surface is sampled by boundary particles fixed in the body's frame (Akinci et al.
-// 2012, "Versatile rigid-fluid coupling for incompressible SPH"). The fluid sees them as it sees
-// the walls (delta-SPH's extrapolated wall pressure and no-slip velocity, physics/delta_sph.h); the
-// body gets the opposite of every force its particles exert on the fluid, summed into a force and
-// a torque about its centre, and moves as a rigid body under them and gravity (semi-implicit
-// Euler, the fluid's own step). A driven body follows a prescribed motion instead and pushes the
-// fluid without being pushed back.
+// Rigid bodies in the fluid (issue 18), written once for CPU and CUDA: a body is a box, a sphere
+// or a closed triangle mesh whose surface is sampled by boundary particles fixed in the body's
+// frame (Akinci et al. 2012, "Versatile rigid-fluid coupling for incompressible SPH"). The fluid
+// sees them as it sees the walls (delta-SPH's extrapolated wall pressure and no-slip velocity,
+// physics/delta_sph.h); the body gets the opposite of every force its particles exert on the fluid,
+// summed into a force and a torque about its centre, and moves as a rigid body under them and
+// gravity (semi-implicit Euler, the fluid's own step). A driven body follows a prescribed motion
+// instead and pushes the fluid without being pushed back.
 //
 // Contacts with the container's walls and between bodies are simple: the deepest point of a body
-// past a wall (a box's corner, a sphere's lowest point) is moved back onto it and gets an
-// inelastic impulse with Coulomb friction; two bodies whose bounding spheres overlap are pushed
-// apart along the line between their centres.
+// past a wall (a box's corner, a sphere's lowest point, a corner of a mesh's bounding box) is
+// moved back onto it and gets an inelastic impulse with Coulomb friction; two bodies whose
+// bounding spheres overlap are pushed apart along the line between their centres.
 #pragma once
 
 #include <cmath>
@@ -21,7 +21,7 @@
 
 namespace weir {
 
-enum class BodyShape : int { Box = 0, Sphere = 1 };
+enum class BodyShape : int { Box = 0, Sphere = 1, Mesh = 2 };
 // Floating: moved by the fluid and gravity. Oscillating: centre = home + amplitude sin(2 pi t /
 // period), its amplitude ramped up linearly over `ramp` seconds (a piston wave maker).
 // Rotating: about its centre at a constant angular velocity (a paddle).
@@ -45,6 +45,13 @@ WEIR_HD inline Real4 turned(const Real4& q, const Vec3& w, Real dt) {
     const Real inv = norm > Real(0) ? Real(1) / norm : Real(1);
     return {r.x * inv, r.y * inv, r.z * inv, r.w * inv};
 }
+// The rotation a after b: rotate(composed(a, b), v) == rotate(a, rotate(b, v)).
+WEIR_HD inline Real4 composed(const Real4& a, const Real4& b) {
+    return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+            a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+            a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
+            a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+}
 // The rotation by angle |a| about a / |a|.
 WEIR_HD inline Real4 rotationOf(const Vec3& a) {
     const Real angle = length(a);
@@ -57,14 +64,19 @@ WEIR_HD inline Real4 rotationOf(const Vec3& a) {
 
 struct RigidBody {
     // State: the centre of mass, orientation, its velocity and angular velocity (world frame).
+    // q turns the body's frame (the world's axes at the start, origin at the centre of mass) into
+    // the world's: the identity at t = 0.
     Vec3 x;
     Real4 q{0, 0, 0, 1};
     Vec3 v, omega;
     // Constants. invMass 0: driven (infinitely heavy to the fluid and to contacts).
     Real invMass = 0;
-    Vec3 invInertia;  // principal, in the body's frame (the box's axes)
+    Vec3 invInertia;  // principal, about the axes below
+    Real4 axes{0, 0, 0,
+               1};  // the principal axes in the body's frame (a box's or sphere's: its own)
     BodyShape shape = BodyShape::Box;
-    Vec3 halfSize;  // a box's half extents; a sphere's radius in each
+    Vec3 halfSize;   // a box's half extents; a sphere's radius in each; a mesh's bounding box's
+    Vec3 boxCentre;  // the bounding box's centre in the body's frame (a mesh's; 0 for a box)
     BodyMotion motion = BodyMotion::Floating;
     Vec3 home;       // driven: the centre at t = 0
     Vec3 amplitude;  // oscillating, m
@@ -74,11 +86,15 @@ struct RigidBody {
     Vec3 force, torque;
 };
 
+// The rotation from the body's principal axes to the world's.
+WEIR_HD inline Real4 principalToWorld(const RigidBody& b) { return composed(b.q, b.axes); }
+
 // The body's inverse inertia in the world frame applied to v.
 WEIR_HD inline Vec3 inverseInertiaTimes(const RigidBody& b, const Vec3& v) {
-    const Vec3 local = rotateBack(b.q, v);
+    const Real4 p = principalToWorld(b);
+    const Vec3 local = rotateBack(p, v);
     return rotate(
-        b.q, Vec3(local.x * b.invInertia.x, local.y * b.invInertia.y, local.z * b.invInertia.z));
+        p, Vec3(local.x * b.invInertia.x, local.y * b.invInertia.y, local.z * b.invInertia.z));
 }
 
 // A driven body's pose and velocities at time t.
@@ -101,15 +117,16 @@ WEIR_HD inline void placeDrivenBody(RigidBody& b, double t) {
 }
 
 // A floating body over dt under the fluid's force and torque (b.force, b.torque) and gravity:
-// semi-implicit Euler, Euler's equations in the body frame for the rotation.
+// semi-implicit Euler, Euler's equations in the principal axes for the rotation.
 WEIR_HD inline void advanceFloatingBody(RigidBody& b, const Vec3& gravity, Real dt) {
     b.v += (b.force * b.invMass + gravity) * dt;
-    Vec3 w = rotateBack(b.q, b.omega);
-    const Vec3 torque = rotateBack(b.q, b.torque);
+    const Real4 principal = principalToWorld(b);
+    Vec3 w = rotateBack(principal, b.omega);
+    const Vec3 torque = rotateBack(principal, b.torque);
     const Vec3 momentum(w.x / b.invInertia.x, w.y / b.invInertia.y, w.z / b.invInertia.z);
     const Vec3 dw = torque - cross(w, momentum);
     w += Vec3(dw.x * b.invInertia.x, dw.y * b.invInertia.y, dw.z * b.invInertia.z) * dt;
-    b.omega = rotate(b.q, w);
+    b.omega = rotate(principal, w);
     b.x += b.v * dt;
     b.q = turned(b.q, b.omega, dt);
 }
@@ -164,9 +181,9 @@ WEIR_HD inline void containBody(RigidBody& b, const Vec3& lo, const Vec3& hi, in
             } else {
                 deepest = -1;
                 for (int k = 0; k < 8; ++k) {
-                    const Vec3 corner((k & 1) ? b.halfSize.x : -b.halfSize.x,
-                                      (k & 2) ? b.halfSize.y : -b.halfSize.y,
-                                      (k & 4) ? b.halfSize.z : -b.halfSize.z);
+                    const Vec3 corner = b.boxCentre + Vec3((k & 1) ? b.halfSize.x : -b.halfSize.x,
+                                                           (k & 2) ? b.halfSize.y : -b.halfSize.y,
+                                                           (k & 4) ? b.halfSize.z : -b.halfSize.z);
                     const Vec3 r = rotate(b.q, corner);
                     const Real depth =
                         side == 0 ? lo[a] - (b.x[a] + r[a]) : (b.x[a] + r[a]) - hi[a];
@@ -188,7 +205,7 @@ WEIR_HD inline void containBody(RigidBody& b, const Vec3& lo, const Vec3& hi, in
 
 // The radius of a sphere around the body's centre that holds it.
 WEIR_HD inline Real boundingRadius(const RigidBody& b) {
-    return b.shape == BodyShape::Sphere ? b.halfSize.x : length(b.halfSize);
+    return b.shape == BodyShape::Sphere ? b.halfSize.x : length(b.boxCentre) + length(b.halfSize);
 }
 
 // Two bodies whose bounding spheres overlap: pushed apart along the line of centres (by their

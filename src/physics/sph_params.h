@@ -78,6 +78,11 @@ struct SphParams {
     // under which a particle, or a neighbour, is at a free surface (it shifts along it only).
     Real shifting = 0;
     Real shiftingInvW = 0;
+    // Monaghan's (2000) artificial pressure against the tensile instability: in a pair where a
+    // particle is in tension, its p / rho^2 adds R |p / rho^2| (W_ij / W(h / 3))^4 of repulsion
+    // (R = tensileCorrection, 0: off; 1 / W(h / 3) = invKernelAtReference).
+    Real tensileCorrection = 0;
+    Real invKernelAtReference = 0;
     Real shiftingLimit = 0;
     Real shiftingGateSpeed = 0;
     Real surfaceKernelSum = 0;

@@ -313,11 +313,27 @@ void appendSphere(const SphereShape& sphere, std::vector<float>& out) {
     }
 }
 
-// A rigid body's shape at its pose: its box or sphere built about the origin, each vertex then
+// A rigid body's shape at its pose: its box, sphere or mesh built about the origin (its centre of
+// mass), each vertex then
 // rotated by the pose's quaternion and moved to its position.
 void appendBody(const BodySpec& body, const BodyPose& pose, std::vector<float>& out) {
     const std::size_t first = out.size();
-    if (body.isSphere) {
+    if (body.isMesh) {  // flat shaded, about the centre of mass as the pose is
+        const Vec3d centre = body.centre();
+        for (const auto& t : body.mesh.triangles) {
+            const Vec3d a = body.mesh.vertices[std::size_t(t[0])] - centre,
+                        b = body.mesh.vertices[std::size_t(t[1])] - centre,
+                        c = body.mesh.vertices[std::size_t(t[2])] - centre;
+            const Vec3d n = cross(b - a, c - a);
+            const double area = length(n);
+            if (!(area > 0)) {
+                continue;
+            }
+            for (const Vec3d& p : {a, b, c}) {
+                pushVertex(out, p, n / area);
+            }
+        }
+    } else if (body.isSphere) {
         appendSphere({Vec3d(), body.sphere.radius}, out);
     } else {
         const Vec3d half = (body.box.max - body.box.min) * 0.5;

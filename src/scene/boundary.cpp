@@ -582,6 +582,47 @@ BoundarySamples sampleBoundary(const Scene& scene, double d, double h, int layer
 }
 
 BoundarySamples sampleBodySurface(const BodySpec& body, double d, int layers) {
+    if (body.isMesh) {
+        // Each layer is the mesh's triangles moved in by its depth, kept only where the point is
+        // inside the solid and that deep from every part of its surface: nested offset surfaces,
+        // as a box's layers are nested boxes. (An offset triangle spans its whole face, so near
+        // an edge it would reach the neighbouring faces' planes, or through them at a sharp
+        // one: particles on the surface push the fluid off a body's own d/2 clearance.)
+        const MeshObstacle& mesh = body.mesh;
+        const Box bounds = body.bounds();
+        const Box region{bounds.min - Vec3d(d, d, d), bounds.max + Vec3d(d, d, d)};
+        PointSet points(0.5 * d);
+        for (int layer = 0; layer < layers; ++layer) {
+            const double depth = (layer + 0.5) * d;
+            for (const auto& t : mesh.triangles) {
+                const TriangleLattice lattice(
+                    mesh.vertices[std::size_t(t[0])], mesh.vertices[std::size_t(t[1])],
+                    mesh.vertices[std::size_t(t[2])], d, -depth, mesh.file);
+                for (long i = 0; i < lattice.n + (lattice.n > 0 ? 1 : 0); ++i) {
+                    const auto [first, last] = lattice.row(i, region);
+                    for (long j = first; j <= last; ++j) {
+                        const Vec3d p = lattice.point(i, j);
+                        if (insideRegion(p, region) && insideMesh(mesh, p) &&
+                            !nearMesh(mesh, p, depth * (1 - 1e-3))) {
+                            points.add(p);
+                        }
+                    }
+                }
+            }
+        }
+        BoundarySamples out = points.take();
+        if (out.points.empty()) {  // thinner than a spacing: one sheet, its mid-surface's points
+            PointSet sheet(0.5 * d);
+            for (const auto& t : mesh.triangles) {
+                const TriangleLattice lattice(mesh.vertices[std::size_t(t[0])],
+                                              mesh.vertices[std::size_t(t[1])],
+                                              mesh.vertices[std::size_t(t[2])], d, 0.0, mesh.file);
+                sampleTriangle(lattice, region, sheet);
+            }
+            out = sheet.take();
+        }
+        return out;
+    }
     Scene alone;
     alone.container = body.bounds();
     if (body.isSphere) {

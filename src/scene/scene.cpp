@@ -467,26 +467,120 @@ void requireInside(const FieldReader& r, const Box& bounds, const Box& container
     }
 }
 
+// A mesh {"file", "scale", "translate"} read and placed (obstacles.meshes[i], bodies[i].mesh), its
+// triangles added to the scene's count, its inside test's index built.
+MeshObstacle readMesh(const FieldReader& r, const std::string& source, std::size_t& meshTriangles) {
+    MeshObstacle mesh;
+    r.require("file", "an OBJ or STL file name");
+    mesh.file = r.string("file", "");
+    mesh.scale = r.number("scale", kLength, 1.0);
+    mesh.translate = r.vec3("translate", Vec3d{});
+    // Relative to the scene file's folder (the working directory for built-in scenes).
+    std::filesystem::path file(mesh.file);
+    if (file.is_relative() && source.find('<') != 0) {
+        file = std::filesystem::path(source).parent_path() / file;
+    }
+    try {
+        MeshData data = readMeshFile(file.string());
+        for (const Vec3d& v : data.vertices) {
+            mesh.vertices.push_back(v * mesh.scale + mesh.translate);
+        }
+        mesh.triangles = std::move(data.triangles);
+    } catch (const std::runtime_error& e) {
+        r.fail(r.pathOf("file"), r.written("file"),
+               "a readable OBJ or STL file (" + file.string() + ": " + e.what() + ")");
+    }
+    for (const Vec3d& v : mesh.vertices) {
+        for (int a = 0; a < 3; ++a) {
+            if (!(std::fabs(v[a]) <= 10 * kMaxCoordinate)) {
+                r.fail(r.pathOf("scale"), r.written("scale"),
+                       "a scale that keeps the mesh " + file.string() + " within " +
+                           formatNumber(10 * kMaxCoordinate) +
+                           " m of the origin (a vertex lands at " + formatVec(v) + ")");
+            }
+        }
+    }
+    meshTriangles += mesh.triangles.size();
+    if (meshTriangles > kMaxMeshTriangles) {
+        r.fail(r.pathOf("file"), r.written("file"),
+               "a mesh that keeps the scene's meshes at " + std::to_string(kMaxMeshTriangles) +
+                   " triangles in all (" + file.string() + " brings them to " +
+                   std::to_string(meshTriangles) + ")");
+    }
+    buildMeshIndex(mesh);
+    return mesh;
+}
+
+// A mesh body's solid: its surface closed and facing outwards, its volume and centroid, and its
+// bounds as the body's box.
+void readMeshSolid(const FieldReader& m, BodySpec& body) {
+    const std::string file = m.written("file");
+    if (body.mesh.triangles.empty()) {
+        m.fail(m.pathOf("file"), file, "a mesh with triangles that enclose the body (it has none)");
+    }
+    const std::size_t unmatched = unmatchedEdgesOf(body.mesh.vertices, body.mesh.triangles);
+    if (unmatched > 0) {
+        m.fail(m.pathOf("file"), file,
+               "a closed surface, every edge shared by two triangles that run it opposite ways (" +
+                   std::to_string(unmatched) +
+                   " edges are not: a hole, a triangle facing the wrong way, or a seam whose "
+                   "vertices differ), so that the body has an inside, a volume and a mass");
+    }
+    body.solid = meshSolidOf(body.mesh.vertices, body.mesh.triangles);
+    Box bounds{body.mesh.vertices.front(), body.mesh.vertices.front()};
+    for (const Vec3d& v : body.mesh.vertices) {
+        for (int a = 0; a < 3; ++a) {
+            bounds.min[a] = std::min(bounds.min[a], v[a]);
+            bounds.max[a] = std::max(bounds.max[a], v[a]);
+        }
+    }
+    const Vec3d size = bounds.max - bounds.min;
+    const double boxVolume = size.x * size.y * size.z;
+    if (!(body.solid.volume > 1e-9 * boxVolume)) {
+        m.fail(
+            m.pathOf("file"), file,
+            body.solid.volume < 0
+                ? "a surface whose triangles face outwards (counter-clockwise seen from outside); "
+                  "these face inwards (signed volume " +
+                      formatNumber(body.solid.volume) + " m^3): flip them"
+                : "a surface that encloses a volume (this one encloses " +
+                      formatNumber(body.solid.volume) + " m^3)");
+    }
+    body.box = bounds;
+}
+
 // "bodies": rigid bodies, floating or driven (BodySpec), each inside the container and clear of
 // the others; they need the model and walls that couple them to the fluid.
 void readBodies(const FieldReader& top, Scene& scene) {
+    std::size_t meshTriangles = 0;
+    for (const MeshObstacle& m : scene.obstacleMeshes) {
+        meshTriangles += m.triangles.size();
+    }
     top.forEach(
-        "bodies", {"box", "sphere", "density", "mass", "velocity", "angularVelocity", "motion"},
+        "bodies",
+        {"box", "sphere", "mesh", "density", "mass", "velocity", "angularVelocity", "motion"},
         [&](const FieldReader& r) {
             BodySpec body;
             const std::string shapes =
-                "exactly one of \"box\": {\"min\": [..], \"max\": [..]} "
-                "or \"sphere\": {\"center\": [..], \"radius\": r}";
-            if ((r.find("box") != nullptr) == (r.find("sphere") != nullptr)) {
-                r.fail(r.path(),
-                       r.find("box") ? "both a box and a sphere" : "neither a box nor a sphere",
+                "exactly one of \"box\": {\"min\": [..], \"max\": [..]}, "
+                "\"sphere\": {\"center\": [..], \"radius\": r} or \"mesh\": {\"file\": "
+                "\"hull.obj\", \"scale\": s, \"translate\": [..]}";
+            const int given = (r.find("box") != nullptr) + (r.find("sphere") != nullptr) +
+                              (r.find("mesh") != nullptr);
+            if (given != 1) {
+                r.fail(r.path(), given == 0 ? "a body with no shape" : "a body with two shapes",
                        shapes);
             }
             if (r.find("box") != nullptr) {
                 body.box = readBox(r.object("box", {"min", "max"}));
-            } else {
+            } else if (r.find("sphere") != nullptr) {
                 body.isSphere = true;
                 body.sphere = readSphere(r.object("sphere", {"center", "radius"}));
+            } else {
+                const FieldReader m = r.object("mesh", {"file", "scale", "translate"});
+                body.isMesh = true;
+                body.mesh = readMesh(m, scene.sourcePath, meshTriangles);
+                readMeshSolid(m, body);
             }
             requireInside(r, body.bounds(), scene.container,
                           "a body with bounds " + formatVec(body.bounds().min) + " to " +
@@ -525,7 +619,7 @@ void readBodies(const FieldReader& top, Scene& scene) {
                 } else if (!body.isSphere && length(body.rate) > 0) {  // a sphere stays put
                     // Each corner sweeps a circle about the axis through the centre: along world
                     // axis e it reaches para (a.e) +- perp sqrt(1 - (a.e)^2).
-                    const Vec3d centre = (start.min + start.max) * 0.5;
+                    const Vec3d centre = body.centre();  // it turns about its centre of mass
                     const Vec3d axis = body.rate / length(body.rate);
                     swept = {centre, centre};
                     for (int c = 0; c < 8; ++c) {
@@ -824,53 +918,15 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     obstacles.forEach(
         "meshes", {"file", "scale", "translate"},
         [&](const FieldReader& r) {
-            MeshObstacle mesh;
-            r.require("file", "an OBJ or STL file name");
-            mesh.file = r.string("file", "");
-            mesh.scale = r.number("scale", kLength, 1.0);
-            mesh.translate = r.vec3("translate", Vec3d{});
-            // Relative to the scene file's folder (the working directory for built-in scenes).
-            std::filesystem::path file(mesh.file);
-            if (file.is_relative() && source.find('<') != 0) {
-                file = std::filesystem::path(source).parent_path() / file;
-            }
-            try {
-                MeshData data = readMeshFile(file.string());
-                for (const Vec3d& v : data.vertices) {
-                    mesh.vertices.push_back(v * mesh.scale + mesh.translate);
-                }
-                mesh.triangles = std::move(data.triangles);
-            } catch (const std::runtime_error& e) {
-                r.fail(r.pathOf("file"), r.written("file"),
-                       "a readable OBJ or STL file (" + file.string() + ": " + e.what() + ")");
-            }
-            for (const Vec3d& v : mesh.vertices) {
-                for (int a = 0; a < 3; ++a) {
-                    if (!(std::fabs(v[a]) <= 10 * kMaxCoordinate)) {
-                        r.fail(r.pathOf("scale"), r.written("scale"),
-                               "a scale that keeps the mesh " + file.string() + " within " +
-                                   formatNumber(10 * kMaxCoordinate) +
-                                   " m of the origin (a vertex lands at " + formatVec(v) + ")");
-                    }
-                }
-            }
-            meshTriangles += mesh.triangles.size();
-            if (meshTriangles > kMaxMeshTriangles) {
-                r.fail(r.pathOf("file"), r.written("file"),
-                       "a mesh that keeps the scene's meshes at " +
-                           std::to_string(kMaxMeshTriangles) + " triangles in all (" +
-                           file.string() + " brings them to " + std::to_string(meshTriangles) +
-                           ")");
-            }
-            buildMeshIndex(mesh);
+            MeshObstacle mesh = readMesh(r, source, meshTriangles);
             scene.obstacleMeshes.push_back(std::move(mesh));
         },
         kMaxMeshes);
 
-    FieldReader fluid =
-        top.object("fluid", {"preset", "restDensity", "viscosity", "stiffness", "eos",
-                             "pressureForce", "clampNegativePressure", "negativePressureScale",
-                             "model", "artificialViscosity", "densityDiffusion", "shifting"});
+    FieldReader fluid = top.object(
+        "fluid", {"preset", "restDensity", "viscosity", "stiffness", "eos", "pressureForce",
+                  "clampNegativePressure", "negativePressureScale", "model", "artificialViscosity",
+                  "densityDiffusion", "shifting", "tensileCorrection"});
     const std::string model = fluid.string("model", "delta-sph");
     if (model == "paper") {
         scene.model = FluidModelName::Paper;
@@ -885,12 +941,15 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     scene.artificialViscosity = fluid.optionalNumber("artificialViscosity", between(0, 1));
     scene.densityDiffusion = fluid.optionalNumber("densityDiffusion", between(0, 1));
     scene.shifting = fluid.optionalNumber("shifting", between(0, 10));
+    scene.tensileCorrection = fluid.optionalNumber("tensileCorrection", between(0, 1));
     if (!delta) {
-        for (const char* field : {"artificialViscosity", "densityDiffusion", "shifting"}) {
+        for (const char* field :
+             {"artificialViscosity", "densityDiffusion", "shifting", "tensileCorrection"}) {
             if (fluid.find(field)) {
                 fluid.fail(fluid.pathOf(field), fluid.written(field),
                            "given only with \"model\": \"delta-sph\" (the paper's model has "
-                           "none of artificialViscosity, densityDiffusion, shifting)");
+                           "none of artificialViscosity, densityDiffusion, shifting, "
+                           "tensileCorrection)");
             }
         }
     }
@@ -1075,6 +1134,9 @@ void EmitterSpec::planeAxes(Vec3d& u, Vec3d& v) const {
 }
 
 double BodySpec::volume() const {
+    if (isMesh) {
+        return solid.volume;
+    }
     if (isSphere) {
         return 4.0 / 3.0 * 3.14159265358979323846 * sphere.radius * sphere.radius * sphere.radius;
     }

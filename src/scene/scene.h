@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/vec3.h"
+#include "scene/mesh_solid.h"
 
 namespace weir {
 
@@ -70,19 +71,24 @@ struct MovingWall {
     Vec3d velocity;
 };
 
-// A rigid body (issue 18; physics/rigid_body.h): "bodies": [{"box": {"min", "max"}} or
-// {"sphere": {"center", "radius"}}, then "density" (kg/m^3) or "mass" (kg) for a floating body,
+// A rigid body (issue 18; physics/rigid_body.h): "bodies": [{"box": {"min", "max"}},
+// {"sphere": {"center", "radius"}} or {"mesh": {"file", "scale", "translate"}} (a closed OBJ or STL
+// surface), then "density" (kg/m^3) or "mass" (kg) for a floating body,
 // or "motion" for a driven one; "velocity" and "angularVelocity" (rad/s) at the start].
 enum class BodyDrive { Floating, Oscillate, Rotate };
 struct BodySpec {
     bool isSphere = false;
-    Box box;             // "box"
+    bool isMesh = false;
+    Box box;             // "box"; a mesh's bounds
     SphereShape sphere;  // "sphere"
+    MeshObstacle mesh;   // "mesh": placed as an obstacle mesh is
+    MeshSolid solid;     // the mesh's volume, centroid and second moment
     double mass = 0;     // kg: "mass", or "density" times the volume; 0 for a driven body
     Vec3d velocity, angularVelocity;
     // "motion": {"oscillate": {"amplitude": [..] m, "period": s, "ramp": s}}: the centre moves by
     // amplitude sin(2 pi t / period), the amplitude ramped up over the first `ramp` seconds; or
-    // {"rotate": {"rate": [..] rad/s}}: about the centre at that angular velocity.
+    // {"rotate": {"rate": [..] rad/s}}: about the centre at that angular velocity. The centre is
+    // the centre of mass (a mesh's centroid).
     BodyDrive drive = BodyDrive::Floating;
     Vec3d amplitude;
     double period = 1, ramp = 0;
@@ -96,6 +102,10 @@ struct BodySpec {
         return {sphere.center - r, sphere.center + r};
     }
     double volume() const;
+    // The centre of mass at the start (of a uniform solid).
+    Vec3d centre() const {
+        return isSphere ? sphere.center : isMesh ? solid.centroid : (box.min + box.max) * 0.5;
+    }
 };
 
 // A named fluid: density (kg/m^3) and dynamic viscosity (Pa s) near 20 C.
@@ -148,6 +158,8 @@ struct Scene {
     FluidModelName model = FluidModelName::Paper;  // "model" (parsed default: "delta-sph")
     std::optional<double> artificialViscosity;     // "artificialViscosity": alpha (delta-sph)
     std::optional<double> densityDiffusion;        // "densityDiffusion": delta (delta-sph)
+    std::optional<double> tensileCorrection;       // "tensileCorrection": Monaghan's R (delta-sph;
+                                                   // unset: 0.2, 0: off)
     std::optional<double> shifting;                // "shifting": particle shifting's A / Sun et
                                                    // al.'s (delta-sph; unset or 0: off)
     bool eosGiven = false;                         // "eos" was written (else the model's)

@@ -105,16 +105,18 @@ SceneSeeds sceneSeeds(const Scene& scene, double d, std::int64_t limit) {
     }
     seeds.obstacleBoxes = scene.obstacleBoxes;
     seeds.obstacleSpheres = scene.obstacleSpheres;
+    // Half a spacing, less round-off: a point d/2 from a face is kept (scene/seeding.h).
+    seeds.clearance = d * (0.5 - 1e-6);
+    seeds.obstacleMeshes = scene.obstacleMeshes;
     for (const BodySpec& body : scene.bodies) {  // fluid starts clear of the bodies too
-        if (body.isSphere) {
+        if (body.isMesh) {
+            seeds.obstacleMeshes.push_back(body.mesh);
+        } else if (body.isSphere) {
             seeds.obstacleSpheres.push_back(body.sphere);
         } else {
             seeds.obstacleBoxes.push_back(body.box);
         }
     }
-    // Half a spacing, less round-off: a point d/2 from a face is kept (scene/seeding.h).
-    seeds.clearance = d * (0.5 - 1e-6);
-    seeds.obstacleMeshes = scene.obstacleMeshes;
     for (MeshObstacle& mesh : seeds.obstacleMeshes) {
         if (!mesh.index) {
             buildMeshIndex(mesh);

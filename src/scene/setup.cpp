@@ -25,6 +25,10 @@ constexpr std::int64_t kDefaultParticleCount = 20000;
 // value of Molteni & Colagrossi 2009 and DualSPHysics), the CFL number on h.
 constexpr double kDefaultArtificialViscosity = 0.01;
 constexpr double kDefaultDensityDiffusion = 0.1;
+// Monaghan's (2000) R for his artificial pressure (his value for n = 4): delta-SPH keeps negative
+// pressure, and without it two particles in tension closed onto one point (Lobovsky's dam break
+// at 240 over H, on the ceiling where its run-up jet hits, H200 2026-12-04).
+constexpr double kDefaultTensileCorrection = 0.2;
 constexpr double kDeltaSphCfl = 0.25;
 // Divergence-free SPH (solver "dfsph"): its CFL number, tolerances and sweep limit are the
 // scene's "dfsph" settings (scene/scene.h); its force condition dt <= kDfsphForceNumber
@@ -238,6 +242,42 @@ HostParticles seedParticles(const Scene& scene, double spacing) {
 
 namespace {
 
+// The unit quaternion of the rotation whose matrix has these columns (a right-handed frame).
+Real4 quaternionOf(const std::array<Vec3d, 3>& columns) {
+    const double m[3][3] = {{columns[0].x, columns[1].x, columns[2].x},
+                            {columns[0].y, columns[1].y, columns[2].y},
+                            {columns[0].z, columns[1].z, columns[2].z}};
+    const double trace = m[0][0] + m[1][1] + m[2][2];
+    double x, y, z, w;
+    if (trace > 0) {
+        const double s = 2 * std::sqrt(trace + 1);
+        w = s / 4;
+        x = (m[2][1] - m[1][2]) / s;
+        y = (m[0][2] - m[2][0]) / s;
+        z = (m[1][0] - m[0][1]) / s;
+    } else if (m[0][0] > m[1][1] && m[0][0] > m[2][2]) {
+        const double s = 2 * std::sqrt(1 + m[0][0] - m[1][1] - m[2][2]);
+        w = (m[2][1] - m[1][2]) / s;
+        x = s / 4;
+        y = (m[0][1] + m[1][0]) / s;
+        z = (m[0][2] + m[2][0]) / s;
+    } else if (m[1][1] > m[2][2]) {
+        const double s = 2 * std::sqrt(1 + m[1][1] - m[0][0] - m[2][2]);
+        w = (m[0][2] - m[2][0]) / s;
+        x = (m[0][1] + m[1][0]) / s;
+        y = s / 4;
+        z = (m[1][2] + m[2][1]) / s;
+    } else {
+        const double s = 2 * std::sqrt(1 + m[2][2] - m[0][0] - m[1][1]);
+        w = (m[1][0] - m[0][1]) / s;
+        x = (m[0][2] + m[2][0]) / s;
+        y = (m[1][2] + m[2][1]) / s;
+        z = s / 4;
+    }
+    const double norm = std::sqrt(x * x + y * y + z * z + w * w);
+    return {Real(x / norm), Real(y / norm), Real(z / norm), Real(w / norm)};
+}
+
 // The rigid bodies' states and their boundary particles in each body's frame (centred on its
 // centre of mass, axes the box's): sampled as obstacles are, with Akinci's psi from each body's
 // own particles (capped at a full neighbourhood's volume, as the walls').
@@ -258,7 +298,7 @@ RigidBodySetup rigidBodySetup(const Scene& scene, double d, double h, double par
                              " m across, too small for a boundary particle at spacing " + fmt(d) +
                              " m: make it larger or the particles finer");
         }
-        const Vec3d centre = spec.isSphere ? spec.sphere.center : (bounds.min + bounds.max) * 0.5;
+        const Vec3d centre = spec.centre();
         for (const Real4& p : built.pos) {
             out.particles.push_back(
                 {Real(p.x - centre.x), Real(p.y - centre.y), Real(p.z - centre.z), p.w});
@@ -269,14 +309,23 @@ RigidBodySetup rigidBodySetup(const Scene& scene, double d, double h, double par
         body.home = body.x;
         body.v = Vec3(spec.velocity);
         body.omega = Vec3(spec.angularVelocity);
-        body.shape = spec.isSphere ? BodyShape::Sphere : BodyShape::Box;
+        body.shape = spec.isMesh     ? BodyShape::Mesh
+                     : spec.isSphere ? BodyShape::Sphere
+                                     : BodyShape::Box;
         const Vec3d half = (bounds.max - bounds.min) * 0.5;
         body.halfSize = Vec3(half);
+        body.boxCentre = Vec3((bounds.min + bounds.max) * 0.5 - centre);
         if (spec.drive == BodyDrive::Floating) {
             const double m = spec.mass;
             body.invMass = Real(1 / m);
             Vec3d inertia;
-            if (spec.isSphere) {
+            if (spec.isMesh) {
+                // About the principal axes of the uniform solid the mesh bounds, whatever its
+                // density says of the mass (a body of given mass is uniform too).
+                const PrincipalAxes principal = principalAxesOf(inertiaTensorOf(spec.solid, m));
+                inertia = principal.values;
+                body.axes = quaternionOf(principal.axes);
+            } else if (spec.isSphere) {
                 const double i = 0.4 * m * spec.sphere.radius * spec.sphere.radius;
                 inertia = Vec3d(i, i, i);
             } else {
@@ -531,6 +580,16 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         say("kernel gradient divided by its lattice moment " + fmt(report.gradientMoment) +
             ", so that on the seeded lattice a linear pressure, a linear flow and a quadratic flow "
             "are differentiated exactly");
+        const double tensile = scene.tensileCorrection.value_or(kDefaultTensileCorrection);
+        if (!dfsph && tensile > 0) {
+            say("tensile correction R = " + fmt(tensile) +
+                " (Monaghan 2000's artificial pressure): a pair with a particle in tension gains "
+                "R |p / rho^2| (W / W(h/3))^4 of repulsion, so tension cannot pull two particles "
+                "onto one point (in spray and where a jet tears; nothing where p >= 0)");
+        } else if (!dfsph) {
+            say("tensile correction off (fluid.tensileCorrection 0): particles in tension may "
+                "close onto one point in violent flows, which stops the run");
+        }
         const double shifting = scene.shifting.value_or(0.0);
         if (shifting > 0) {
             say("particle shifting (Sun et al. 2017's delta-plus-SPH form" +
@@ -746,6 +805,14 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             p.minFactorDenominator = Real(0.5 * squares);
             p.integrator = IntegratorKind::SemiImplicitEuler;  // the solves assume it
             p.densityDiffusion = 0;  // the density is summed, not integrated
+        }
+        if (!dfsph) {
+            p.tensileCorrection = Real(scene.tensileCorrection.value_or(kDefaultTensileCorrection));
+            // Monaghan's f = W(r) / W(dp), dp his initial spacing, about his support / 2.6: here
+            // h / 3, which is d at delta-SPH's default h = 3 d. At h = 2 d, W(d) would make
+            // (W(0) / W(dp))^4 = 808 (22 at 3 d), and a pair in slight tension at a free surface
+            // shot apart (a floating box's tank blew up at 0.33 s, CPU 2026-12-04).
+            p.invKernelAtReference = Real(1.0 / double(p.wendland.value(Real(h / 3))));
         }
         const double shifting = scene.shifting.value_or(0.0);
         if (shifting > 0) {

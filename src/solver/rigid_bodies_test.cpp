@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <string>
 
@@ -96,6 +98,63 @@ TEST(RigidBodies, LightBoxFloatsAtArchimedesDraft) {
     const double draft = draftSum / samples;
     std::cout << "floating box: draft " << draft << " m against Archimedes' " << expected << "\n";
     EXPECT_NEAR(draft / expected, 1.0, 0.03);
+}
+
+// The box [lo, hi] as an OBJ file: 8 vertices, 6 outward quads (fanned by the reader).
+void writeBoxObj(const std::filesystem::path& path, const Vec3d& lo, const Vec3d& hi) {
+    std::ofstream f(path);
+    for (int c = 0; c < 8; ++c) {
+        f << "v " << ((c & 1) ? hi.x : lo.x) << " " << ((c & 2) ? hi.y : lo.y) << " "
+          << ((c & 4) ? hi.z : lo.z) << "\n";
+    }
+    f << "f 1 5 7 3\nf 2 4 8 6\nf 1 2 6 5\nf 3 7 8 4\nf 1 3 4 2\nf 5 6 8 7\n";
+}
+
+// A box read from an OBJ file (a mesh body: its volume, centroid and inertia from the surface,
+// its boundary particles from the triangles) floats at Archimedes' draft. Squatter than the box
+// above: 0.12 m long, 0.05 m high, 0.07 m across, density 600, so its metacentre is above its
+// centre of mass and it is stable upright (GM = T/2 + B^2/(12 T) - H/2 = 3.6 mm); the box above
+// (GM < 0) floats upright only by the symmetry of its sampling, which a mesh's triangles break.
+TEST(RigidBodies, MeshBoxFloatsAtArchimedesDraft) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / "weir_mesh_body_test";
+    std::filesystem::create_directories(dir);
+    const double d = 0.01, height = 0.05, draftExpected = height * 600 / 998.0;
+    const double bottom = 0.1 - draftExpected + 0.005;
+    writeBoxObj(dir / "box.obj", Vec3d(0.09, bottom, 0.015), Vec3d(0.21, bottom + height, 0.085));
+    const Scene scene = parseScene(R"({"name": "mesh_body_test",
+        "container": {"min": [0, 0, 0], "max": [0.3, 0.2, 0.1]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.3, 0.1, 0.1]}],
+        "bodies": [{"mesh": {"file": "box.obj"}, "density": 600}], "fluid": {"preset": "water"},
+        "particles": {"spacing": 0.01, "smoothingRatio": 2},
+        "time": {"duration": 1.6, "frameRate": 20}})",
+                                   (dir / "scene.json").string());
+    ASSERT_TRUE(scene.bodies[0].isMesh);
+    EXPECT_NEAR(scene.bodies[0].mass, 600 * 0.12 * 0.05 * 0.07, 1e-5 * 0.252);  // OBJ's 6 digits
+    const double expected = height * 600 / scene.restDensity;
+    auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, nullptr));
+    ASSERT_EQ(sim->rigidBodies().size(), 1u);
+    EXPECT_EQ(sim->rigidBodies()[0].shape, BodyShape::Mesh);
+    HostParticles p;
+    double draftSum = 0;
+    int samples = 0;
+    for (int frame = 1; frame <= 32; ++frame) {
+        sim->advanceTo(0.05 * frame);
+        ASSERT_EQ(sim->fault().code, 0) << describeFault(sim->fault(), sim->params());
+        if (frame > 20) {
+            const RigidBody box = sim->rigidBodies()[0];
+            sim->download(p);
+            const double lowest = box.x.y + box.boxCentre.y - box.halfSize.y;
+            draftSum += waterLevel(p, box, d) - lowest;
+            ++samples;
+            EXPECT_GT(std::abs(box.q.w), 0.99) << "frame " << frame;  // it stays upright
+        }
+    }
+    const double draft = draftSum / samples;
+    std::cout << "floating mesh box: draft " << draft << " m against Archimedes' " << expected
+              << "\n";
+    EXPECT_NEAR(draft / expected, 1.0, 0.03);
+    std::filesystem::remove_all(dir);
 }
 
 TEST(RigidBodies, DenseBoxSinksToTheFloor) {
@@ -201,7 +260,7 @@ TEST(RigidBodies, BadBodiesAreRefusedNamingTheField) {
     fails(R"([{"sphere": {"center": [0.5, 0.5, 0.5], "radius": 0.1}, "density": 500},
               {"box": {"min": [0.5, 0.5, 0.5], "max": [0.7, 0.7, 0.7]}, "density": 500}])",
           "overlap those of bodies[0]");
-    fails(R"([{"density": 500}])", "neither a box nor a sphere");
+    fails(R"([{"density": 500}])", "a body with no shape");
     // A piston whose stroke takes it through a wall (it would crush the fluid caught behind it:
     // a flume whose piston reached 5 mm past its wall blew up at 2.5 mm spacing on an H200), and
     // a paddle that turns through the floor.
@@ -217,6 +276,35 @@ TEST(RigidBodies, BadBodiesAreRefusedNamingTheField) {
     fails(R"([{"box": {"min": [0.1, 0.1, 0.1], "max": [0.2, 0.2, 0.2]},
                "motion": {"oscillate": {"amplitude": [0.1, 0, 0], "period": 1}}, "mass": 3}])",
           "bodies[0].mass");
+    // Mesh bodies: closed, facing outwards.
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / "weir_bad_mesh_body_test";
+    std::filesystem::create_directories(dir);
+    writeBoxObj(dir / "box.obj", Vec3d(0.4, 0.6, 0.4), Vec3d(0.6, 0.8, 0.6));
+    {
+        std::ofstream open(dir / "open.obj");      // the box without its top
+        std::ofstream inward(dir / "inward.obj");  // the box turned inside out
+        for (int c = 0; c < 8; ++c) {
+            const std::string v = std::string("v ") + ((c & 1) ? "0.6" : "0.4") + " " +
+                                  ((c & 2) ? "0.8" : "0.6") + " " + ((c & 4) ? "0.6" : "0.4") +
+                                  "\n";
+            open << v;
+            inward << v;
+        }
+        open << "f 1 5 7 3\nf 2 4 8 6\nf 1 2 6 5\nf 1 3 4 2\nf 5 6 8 7\n";
+        inward << "f 3 7 5 1\nf 6 8 4 2\nf 5 6 2 1\nf 4 8 7 3\nf 2 4 3 1\nf 7 8 6 5\n";
+    }
+    auto mesh = [&](const std::string& name, const std::string& more) {
+        return R"([{"mesh": {"file": ")" + (dir / name).string() + R"("})" + more + "}]";
+    };
+    fails(mesh("open.obj", R"(, "density": 500)"), "bodies[0].mesh.file");
+    fails(mesh("open.obj", R"(, "density": 500)"), "a closed surface");
+    fails(mesh("inward.obj", R"(, "density": 500)"), "face inwards");
+    fails(mesh("missing.obj", R"(, "density": 500)"), "bodies[0].mesh.file");
+    fails(mesh("box.obj", R"(, "box": {"min": [0, 0.6, 0], "max": [0.1, 0.7, 0.1]}, "mass": 1)"),
+          "a body with two shapes");
+    fails(mesh("box.obj", R"(, "density": 0)"), "bodies[0].density");
+    std::filesystem::remove_all(dir);
     try {
         parseScene(R"({"fluid": {"model": "paper"}, )" + tank +
                        R"("bodies": [{"sphere": {"center": [0.5, 0.5, 0.5], "radius": 0.1},

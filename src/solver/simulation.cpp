@@ -1,6 +1,7 @@
 // Backend dispatch, memory checks and fault diagnosis.
 #include "solver/simulation.h"
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -110,6 +111,10 @@ std::string describeFault(const FaultRecord& fault, const SphParams& params) {
             break;
         default:
             msg << "unknown fault code " << fault.code;
+    }
+    if (fault.code != 0 && std::isfinite(fault.x) && std::isfinite(fault.y) &&
+        std::isfinite(fault.z)) {
+        msg << ", at (" << fault.x << ", " << fault.y << ", " << fault.z << ") m";
     }
     msg << ". Likely causes: a time step too large for the stiffness (CFL), too little viscosity,"
            " or a stiffness too low for the fall height; leave timeStep, stiffness and viscosity"

@@ -58,7 +58,7 @@ class SphSimulation final : public Simulation {
         }
         uploadWalls(setup);
         bodies_.upload(exec_, setup.boundary, setup.bodies);
-        FaultRecord none{0, 0, 0, 0.0f, 0.0f};
+        FaultRecord none{0, 0, 0, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
         exec_.upload(fault_, &none, 1);
         // The first step's dt sees the initial speeds and gravity (the lattice starts in balance).
         double maxSpeed2 = 0;

@@ -364,7 +364,7 @@ WEIR_HD inline void dfsphAdvanceAt(Index i, const ParticleView& pv, const SphPar
     // the pressure is solved for, whatever dt. Counting it too cut a 30k dam break's steps by
     // pressure spikes at the walls to 0.8x the CFL step.
     advanceParticle(x, vStart, a, i, p, obstacles, fault, clock, false);
-    checkDensity(start.w, false, i, p, fault, clock);
+    checkDensity(start.w, false, i, x, p, fault, clock);
     newPos[i] = Real4::from(x, pv.pos[i].w);
     newVel[i] = Real4::from(vStart, start.w);
 }

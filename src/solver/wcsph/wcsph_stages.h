@@ -112,7 +112,7 @@ WEIR_HD inline void integrateAt(Index i, const ParticleView& pv, const SphParams
     }
     Vec3 x = pv.position(i), v = pv.velocity(i);
     advanceParticle(x, v, pv.acc[i].xyz(), i, params, obstacles, fault, clock);
-    checkDensity(pv.vel[i].w, false, i, params, fault, clock);
+    checkDensity(pv.vel[i].w, false, i, x, params, fault, clock);
     pv.pos[i] = Real4::from(x);
     pv.vel[i] = Real4::from(v, pv.vel[i].w);  // keeps the step's density for output
 }
@@ -139,7 +139,7 @@ WEIR_HD inline void accelerateAndIntegrateAt(Index i, const ParticleView& pv, co
     }
     Vec3 x = pv.position(i), v = v4.xyz();
     advanceParticle(x, v, a, i, params, obstacles, fault, clock);
-    checkDensity(v4.w, false, i, params, fault, clock);
+    checkDensity(v4.w, false, i, x, params, fault, clock);
     newPos[i] = Real4::from(x);
     newVel[i] = Real4::from(v, v4.w);
 }
@@ -322,7 +322,7 @@ WEIR_HD inline void deltaForceAt(Index i, const ParticleView& pv, const Neighbou
         newPos[i] = Real4::from(x, pv.pos[i].w);
     } else {
         advanceParticle(x, v, a, i, params, obstacles, fault, clock);
-        checkDensity(rhoi, collapsed, i, params, fault, clock);
+        checkDensity(rhoi, collapsed, i, xi, params, fault, clock);
         newPos[i] = Real4::from(x);
     }
     newVel[i] = Real4::from(v, rhoi);
@@ -392,7 +392,7 @@ WEIR_HD inline void deltaDensityAt(Index i, const ParticleView& pv, const Neighb
         nearWall = nearWallWeight(params, xi);
     }
     const Real rho = rhoi + clock->dt * rate;
-    checkDensity(rho, false, i, params, fault, clock);
+    checkDensity(rho, false, i, xi, params, fault, clock);
     moved[i].w = rho;
     if (shifts && !nearWall && kernelSum[i] >= params.splashKernelSum) {
         const Vec3 shift =
