@@ -282,6 +282,48 @@ TEST_F(OffscreenRender, BodiesAreDrawnAtTheirPose) {
     EXPECT_LE(difference(image.pixel(int(side.x), int(side.y)), kBackground), 1);
 }
 
+// A mesh body is drawn about its centre of mass at its pose: the same plank as a 12-triangle mesh
+// starting away from the origin (centroid at x = 0.2), posed at the origin a quarter turn about z.
+TEST_F(OffscreenRender, MeshBodiesAreDrawnAboutTheirCentreAtTheirPose) {
+    SceneGeometry geometry;
+    geometry.container = {{-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}};
+    BodySpec plank;
+    plank.isMesh = true;
+    for (int c = 0; c < 8; ++c) {
+        plank.mesh.vertices.push_back(
+            Vec3d((c & 1) ? 0.5 : -0.1, (c & 2) ? 0.03 : -0.03, (c & 4) ? 0.03 : -0.03));
+    }
+    const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    for (const auto& q : quads) {
+        plank.mesh.triangles.push_back({q[0], q[1], q[2]});
+        plank.mesh.triangles.push_back({q[0], q[2], q[3]});
+    }
+    plank.solid = meshSolidOf(plank.mesh.vertices, plank.mesh.triangles);
+    ASSERT_NEAR(plank.centre().x, 0.2, 1e-12);
+    geometry.bodies.push_back(plank);
+    renderer_->setGeometry(geometry);
+    renderer_->setShowLegend(false);
+    BodyPose pose;  // at the origin, turned a quarter about z: upright
+    const double half = 0.5 * 1.5707963267948966;
+    pose.orientation[2] = std::sin(half);
+    pose.orientation[3] = std::cos(half);
+    renderer_->setBodies(geometry.bodies, {pose});
+    OrbitCamera camera = frontCamera();
+    camera.distance = 3;
+    const Image image = renderer_->renderImage(camera, kWidth, kHeight);
+    // Centred, it spans y = -0.3 .. 0.3; drawn about the mesh's own origin it would span
+    // -0.1 .. 0.5, and y = -0.25 would be background.
+    const PixelPoint top = projectToPixel(camera, Vec3d(0, 0.2, 0), kWidth, kHeight);
+    const PixelPoint bottom = projectToPixel(camera, Vec3d(0, -0.25, 0), kWidth, kHeight);
+    const PixelPoint above = projectToPixel(camera, Vec3d(0, 0.4, 0), kWidth, kHeight);
+    const PixelPoint side = projectToPixel(camera, Vec3d(0.2, 0, 0), kWidth, kHeight);
+    EXPECT_GT(difference(image.pixel(int(top.x), int(top.y)), kBackground), 20);
+    EXPECT_GT(difference(image.pixel(int(bottom.x), int(bottom.y)), kBackground), 20);
+    EXPECT_LE(difference(image.pixel(int(above.x), int(above.y)), kBackground), 1);
+    EXPECT_LE(difference(image.pixel(int(side.x), int(side.y)), kBackground), 1);
+}
+
 TEST(PngImage, WritesAndReadsBackExactly) {
     Image image(37, 21);
     for (std::size_t i = 0; i < image.rgb.size(); ++i) {
