@@ -130,6 +130,32 @@ std::string extentSample(int timeCode, std::size_t count, Point point) {
            vec(hi.x, hi.y, hi.z) + "],\n";
 }
 
+// A triangle mesh as a UsdGeomMesh named `name`, its points moved by -origin.
+void writeMesh(std::ostream& out, const std::string& indent, const std::string& name,
+               const MeshObstacle& m, const Vec3d& origin) {
+    out << indent << "def Mesh \"" << name << "\"\n"
+        << indent << "{\n"
+        << indent << "    int[] faceVertexCounts = ["
+        << joined(m.triangles.size(), [](std::size_t) { return std::string("3"); }) << "]\n"
+        << indent << "    int[] faceVertexIndices = ["
+        << joined(m.triangles.size(),
+                  [&](std::size_t t) {
+                      return std::to_string(m.triangles[t][0]) + ", " +
+                             std::to_string(m.triangles[t][1]) + ", " +
+                             std::to_string(m.triangles[t][2]);
+                  })
+        << "]\n"
+        << indent << "    point3f[] points = ["
+        << joined(m.vertices.size(),
+                  [&](std::size_t v) {
+                      const Vec3d p = m.vertices[v] - origin;
+                      return vec(p.x, p.y, p.z);
+                  })
+        << "]\n"
+        << indent << "    uniform token subdivisionScheme = \"none\"\n"
+        << indent << "}\n";
+}
+
 // An attribute's declaration and its samples: "TYPE NAME.timeSamples = {" ... "}".
 void writeSampled(std::ostream& out, const std::string& indent, const std::string& declaration,
                   Spool& spool, const std::string& stagePath) {
@@ -178,26 +204,7 @@ void writeObstacles(std::ostream& out, const Scene& scene) {
             << "        }\n";
     }
     for (std::size_t k = 0; k < scene.obstacleMeshes.size(); ++k) {
-        const MeshObstacle& m = scene.obstacleMeshes[k];
-        out << "        def Mesh \"mesh_" << k << "\"\n        {\n"
-            << "            int[] faceVertexCounts = ["
-            << joined(m.triangles.size(), [](std::size_t) { return std::string("3"); }) << "]\n"
-            << "            int[] faceVertexIndices = ["
-            << joined(m.triangles.size(),
-                      [&](std::size_t t) {
-                          return std::to_string(m.triangles[t][0]) + ", " +
-                                 std::to_string(m.triangles[t][1]) + ", " +
-                                 std::to_string(m.triangles[t][2]);
-                      })
-            << "]\n"
-            << "            point3f[] points = ["
-            << joined(m.vertices.size(),
-                      [&](std::size_t v) {
-                          return vec(m.vertices[v].x, m.vertices[v].y, m.vertices[v].z);
-                      })
-            << "]\n"
-            << "            uniform token subdivisionScheme = \"none\"\n"
-            << "        }\n";
+        writeMesh(out, "        ", "mesh_" + std::to_string(k), scene.obstacleMeshes[k], Vec3d());
     }
     out << "    }\n";
 }
@@ -235,29 +242,8 @@ void writeBodies(std::ostream& out, const Scene& scene, const std::vector<UsdFra
             << orient << "            }\n"
             << "            uniform token[] xformOpOrder = [\"xformOp:translate\", "
                "\"xformOp:orient\"]\n";
-        if (body.isMesh) {
-            const Vec3d c = body.centre();
-            const MeshObstacle& m = body.mesh;
-            out << "            def Mesh \"shape\"\n            {\n"
-                << "                int[] faceVertexCounts = ["
-                << joined(m.triangles.size(), [](std::size_t) { return std::string("3"); }) << "]\n"
-                << "                int[] faceVertexIndices = ["
-                << joined(m.triangles.size(),
-                          [&](std::size_t t) {
-                              return std::to_string(m.triangles[t][0]) + ", " +
-                                     std::to_string(m.triangles[t][1]) + ", " +
-                                     std::to_string(m.triangles[t][2]);
-                          })
-                << "]\n"
-                << "                point3f[] points = ["
-                << joined(m.vertices.size(),
-                          [&](std::size_t v) {
-                              const Vec3d p = m.vertices[v] - c;
-                              return vec(p.x, p.y, p.z);
-                          })
-                << "]\n"
-                << "                uniform token subdivisionScheme = \"none\"\n"
-                << "            }\n";
+        if (body.isMesh) {  // about its centre of mass, as the pose is
+            writeMesh(out, "            ", "shape", body.mesh, body.centre());
         } else if (body.isSphere) {
             const double r = body.sphere.radius;
             out << "            def Sphere \"shape\"\n            {\n"

@@ -62,6 +62,18 @@ class OffscreenRender : public ::testing::Test {
     }
     void TearDown() override { renderer_.reset(); }
 
+    // The scene's one body posed at the origin, turned a quarter turn about z, seen by camera.
+    Image renderUpright(const SceneGeometry& geometry, const OrbitCamera& camera) {
+        renderer_->setGeometry(geometry);
+        renderer_->setShowLegend(false);
+        BodyPose pose;
+        const double half = 0.5 * 1.5707963267948966;
+        pose.orientation[2] = std::sin(half);
+        pose.orientation[3] = std::cos(half);
+        renderer_->setBodies(geometry.bodies, {pose});
+        return renderer_->renderImage(camera, kWidth, kHeight);
+    }
+
     static std::unique_ptr<OffscreenContext> context_;
     std::unique_ptr<Renderer> renderer_;
 };
@@ -266,16 +278,9 @@ TEST_F(OffscreenRender, BodiesAreDrawnAtTheirPose) {
     BodySpec plank;
     plank.box = {{-0.3, -0.03, -0.03}, {0.3, 0.03, 0.03}};  // lying along x at the start
     geometry.bodies.push_back(plank);
-    renderer_->setGeometry(geometry);
-    renderer_->setShowLegend(false);
-    BodyPose pose;
-    const double half = 0.5 * 1.5707963267948966;  // a quarter turn about z
-    pose.orientation[2] = std::sin(half);
-    pose.orientation[3] = std::cos(half);
-    renderer_->setBodies(geometry.bodies, {pose});
     OrbitCamera camera = frontCamera();
     camera.distance = 3;
-    const Image image = renderer_->renderImage(camera, kWidth, kHeight);
+    const Image image = renderUpright(geometry, camera);
     const PixelPoint top = projectToPixel(camera, Vec3d(0, 0.2, 0), kWidth, kHeight);
     const PixelPoint side = projectToPixel(camera, Vec3d(0.2, 0, 0), kWidth, kHeight);
     EXPECT_GT(difference(image.pixel(int(top.x), int(top.y)), kBackground), 20);
@@ -302,16 +307,9 @@ TEST_F(OffscreenRender, MeshBodiesAreDrawnAboutTheirCentreAtTheirPose) {
     plank.solid = meshSolidOf(plank.mesh.vertices, plank.mesh.triangles);
     ASSERT_NEAR(plank.centre().x, 0.2, 1e-12);
     geometry.bodies.push_back(plank);
-    renderer_->setGeometry(geometry);
-    renderer_->setShowLegend(false);
-    BodyPose pose;  // at the origin, turned a quarter about z: upright
-    const double half = 0.5 * 1.5707963267948966;
-    pose.orientation[2] = std::sin(half);
-    pose.orientation[3] = std::cos(half);
-    renderer_->setBodies(geometry.bodies, {pose});
     OrbitCamera camera = frontCamera();
     camera.distance = 3;
-    const Image image = renderer_->renderImage(camera, kWidth, kHeight);
+    const Image image = renderUpright(geometry, camera);
     // Centred, it spans y = -0.3 .. 0.3; drawn about the mesh's own origin it would span
     // -0.1 .. 0.5, and y = -0.25 would be background.
     const PixelPoint top = projectToPixel(camera, Vec3d(0, 0.2, 0), kWidth, kHeight);

@@ -6,6 +6,8 @@
 #include <tuple>
 #include <utility>
 
+#include "core/symmetric_eigen.h"
+
 namespace weir {
 
 MeshSolid meshSolidOf(const std::vector<Vec3d>& vertices,
@@ -98,47 +100,13 @@ std::array<double, 9> inertiaTensorOf(const MeshSolid& solid, double mass) {
 }
 
 PrincipalAxes principalAxesOf(const std::array<double, 9>& symmetric) {
-    double a[3][3], v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    double a[3][3], v[3][3];
     for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) {
             a[i][j] = 0.5 * (symmetric[std::size_t(3 * i + j)] + symmetric[std::size_t(3 * j + i)]);
         }
     }
-    // Cyclic Jacobi: each sweep zeroes the off-diagonal entries in turn; 3 x 3 converges to round-
-    // off in a handful of sweeps.
-    for (int sweep = 0; sweep < 50; ++sweep) {
-        const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
-        const double scale = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
-        if (!(off > 1e-30 * scale) || off == 0) {
-            break;
-        }
-        for (int p = 0; p < 2; ++p) {
-            for (int q = p + 1; q < 3; ++q) {
-                if (a[p][q] == 0) {
-                    continue;
-                }
-                const double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-                const double t =
-                    (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
-                const double c = 1 / std::sqrt(t * t + 1), s = t * c;
-                for (int k = 0; k < 3; ++k) {  // a <- a J (columns p, q)
-                    const double akp = a[k][p], akq = a[k][q];
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
-                }
-                for (int k = 0; k < 3; ++k) {  // a <- J^T a (rows p, q)
-                    const double apk = a[p][k], aqk = a[q][k];
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
-                }
-                for (int k = 0; k < 3; ++k) {  // v <- v J: columns are the eigenvectors
-                    const double vkp = v[k][p], vkq = v[k][q];
-                    v[k][p] = c * vkp - s * vkq;
-                    v[k][q] = s * vkp + c * vkq;
-                }
-            }
-        }
-    }
+    jacobiEigen(a, v, 50, 1e-30);  // 3 x 3 reaches round-off in a handful of sweeps
     PrincipalAxes out;
     for (int k = 0; k < 3; ++k) {
         out.values[k] = a[k][k];

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/config.h"
+#include "core/symmetric_eigen.h"
 #include "core/vec3.h"
 #include "surface/surface_field.h"
 
@@ -36,44 +37,9 @@ WEIR_HD inline void symmetricEigen(const SymmetricMatrix3& m, Real values[3], Re
     for (int r = 0; r < 3; ++r) {
         for (int c = 0; c < 3; ++c) {
             a[r][c] = m.entry(r, c);
-            vectors[r][c] = r == c ? Real(1) : Real(0);
         }
     }
-    for (int sweep = 0; sweep < 6; ++sweep) {
-        const Real off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
-        const Real diagonal = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
-        if (!(off > Real(1e-14) * diagonal)) {
-            break;
-        }
-        for (int p = 0; p < 2; ++p) {
-            for (int q = p + 1; q < 3; ++q) {
-                if (a[p][q] == Real(0)) {
-                    continue;
-                }
-                // The rotation in the (p, q) plane that zeroes a[p][q].
-                const Real theta = (a[q][q] - a[p][p]) / (Real(2) * a[p][q]);
-                const Real t = (theta >= 0 ? Real(1) : Real(-1)) /
-                               (std::fabs(theta) + std::sqrt(theta * theta + Real(1)));
-                const Real c = Real(1) / std::sqrt(t * t + Real(1));
-                const Real s = t * c;
-                for (int k = 0; k < 3; ++k) {  // a <- a J (columns p, q)
-                    const Real akp = a[k][p], akq = a[k][q];
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
-                }
-                for (int k = 0; k < 3; ++k) {  // a <- J^T a (rows p, q)
-                    const Real apk = a[p][k], aqk = a[q][k];
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
-                }
-                for (int k = 0; k < 3; ++k) {
-                    const Real vkp = vectors[k][p], vkq = vectors[k][q];
-                    vectors[k][p] = c * vkp - s * vkq;
-                    vectors[k][q] = s * vkp + c * vkq;
-                }
-            }
-        }
-    }
+    jacobiEigen(a, vectors, 6, Real(1e-14));
     for (int k = 0; k < 3; ++k) {
         values[k] = a[k][k];
     }
