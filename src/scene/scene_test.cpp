@@ -341,6 +341,7 @@ const BadCase kBadCases[] = {
      "\"linear\" (the paper's eq. 3) or \"tait\""},
     {"/fluid/negativePressureScale", "2", "'fluid.negativePressureScale'", "2",
      "a number in [0, 1]"},
+    {"/fluid/tensileCorrection", "-0.1", "'fluid.tensileCorrection'", "-0.1", "a number in [0, 1]"},
     {"/walls/model", "\"mirror\"", "'walls.model'", "\"mirror\"",
      "\"particles\" (boundary particles, Akinci et al. 2012) or \"simple\""},
     {"/time/adaptive", "1", "'time.adaptive'", "1", "true or false"},
