@@ -591,13 +591,16 @@ BoundarySamples sampleBodySurface(const BodySpec& body, double d, int layers) {
         const MeshObstacle& mesh = body.mesh;
         const Box bounds = body.bounds();
         const Box region{bounds.min - Vec3d(d, d, d), bounds.max + Vec3d(d, d, d)};
+        auto latticeOf = [&](const std::array<int, 3>& t, double offset) {
+            return TriangleLattice(mesh.vertices[std::size_t(t[0])],
+                                   mesh.vertices[std::size_t(t[1])],
+                                   mesh.vertices[std::size_t(t[2])], d, offset, mesh.file);
+        };
         PointSet points(0.5 * d);
         for (int layer = 0; layer < layers; ++layer) {
             const double depth = (layer + 0.5) * d;
             for (const auto& t : mesh.triangles) {
-                const TriangleLattice lattice(
-                    mesh.vertices[std::size_t(t[0])], mesh.vertices[std::size_t(t[1])],
-                    mesh.vertices[std::size_t(t[2])], d, -depth, mesh.file);
+                const TriangleLattice lattice = latticeOf(t, -depth);
                 for (long i = 0; i < lattice.n + (lattice.n > 0 ? 1 : 0); ++i) {
                     const auto [first, last] = lattice.row(i, region);
                     for (long j = first; j <= last; ++j) {
@@ -614,10 +617,7 @@ BoundarySamples sampleBodySurface(const BodySpec& body, double d, int layers) {
         if (out.points.empty()) {  // thinner than a spacing: one sheet, its mid-surface's points
             PointSet sheet(0.5 * d);
             for (const auto& t : mesh.triangles) {
-                const TriangleLattice lattice(mesh.vertices[std::size_t(t[0])],
-                                              mesh.vertices[std::size_t(t[1])],
-                                              mesh.vertices[std::size_t(t[2])], d, 0.0, mesh.file);
-                sampleTriangle(lattice, region, sheet);
+                sampleTriangle(latticeOf(t, 0.0), region, sheet);
             }
             out = sheet.take();
         }
