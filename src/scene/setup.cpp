@@ -29,6 +29,20 @@ constexpr double kDefaultDensityDiffusion = 0.1;
 // pressure, and without it two particles in tension closed onto one point (Lobovsky's dam break
 // at 240 over H, on the ceiling where its run-up jet hits, H200 2026-12-04).
 constexpr double kDefaultTensileCorrection = 0.2;
+// Below h = 2 d it is off unless the scene asks for it: its reach h / 3 is then under 0.7 d, so it
+// never acts on the lattice's neighbours, only on a pair already run into each other, all at once
+// ((W(0) / W(h / 3))^4 = 22) and stiffer than the time step allows. At h = 1.5 d it blew up
+// dam_break_obstacle and tsunami_on_step at 100k particles (density 1.6 rho0 where a splash
+// lands), which run to the end without it (H200, 2026-12-04).
+constexpr double kTensileCorrectionLeastRatio = 2.0;
+
+// The tensile correction's R: the scene's, else the default where h >= 2 d.
+double tensileCorrectionOf(const Scene& scene) {
+    if (scene.tensileCorrection) {
+        return *scene.tensileCorrection;
+    }
+    return scene.smoothingRatio >= kTensileCorrectionLeastRatio ? kDefaultTensileCorrection : 0.0;
+}
 constexpr double kDeltaSphCfl = 0.25;
 // Divergence-free SPH (solver "dfsph"): its CFL number, tolerances and sweep limit are the
 // scene's "dfsph" settings (scene/scene.h); its force condition dt <= kDfsphForceNumber
@@ -417,15 +431,6 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
                              "walls.model is \"simple\"; set walls.model to \"particles\" (the "
                              "default with delta-sph), or use solver \"wcsph\"");
         }
-        for (int a = 0; a < 3; ++a) {
-            if (scene.periodic[std::size_t(a)]) {
-                throw SceneError(where +
-                                 ": solver \"dfsph\" does not support periodic axes yet "
-                                 "(container.periodic has " +
-                                 std::string(1, "xyz"[a]) +
-                                 " true); use solver \"wcsph\" for this scene");
-            }
-        }
     }
     setup.method = scene.solver;
     const double h = scene.smoothingRatio * d;
@@ -580,15 +585,19 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
         say("kernel gradient divided by its lattice moment " + fmt(report.gradientMoment) +
             ", so that on the seeded lattice a linear pressure, a linear flow and a quadratic flow "
             "are differentiated exactly");
-        const double tensile = scene.tensileCorrection.value_or(kDefaultTensileCorrection);
+        const double tensile = tensileCorrectionOf(scene);
         if (!dfsph && tensile > 0) {
             say("tensile correction R = " + fmt(tensile) +
                 " (Monaghan 2000's artificial pressure): a pair with a particle in tension gains "
                 "R |p / rho^2| (W / W(h/3))^4 of repulsion, so tension cannot pull two particles "
                 "onto one point (in spray and where a jet tears; nothing where p >= 0)");
-        } else if (!dfsph) {
+        } else if (!dfsph && scene.tensileCorrection) {
             say("tensile correction off (fluid.tensileCorrection 0): particles in tension may "
                 "close onto one point in violent flows, which stops the run");
+        } else if (!dfsph) {
+            say("tensile correction off below h = 2 d: its reach h / 3 is under 0.7 d, so it "
+                "would act only on pairs already run together, stiffer than the time step "
+                "(fluid.tensileCorrection turns it on)");
         }
         const double shifting = scene.shifting.value_or(0.0);
         if (shifting > 0) {
@@ -807,7 +816,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             p.densityDiffusion = 0;  // the density is summed, not integrated
         }
         if (!dfsph) {
-            p.tensileCorrection = Real(scene.tensileCorrection.value_or(kDefaultTensileCorrection));
+            p.tensileCorrection = Real(tensileCorrectionOf(scene));
             // Monaghan's f = W(r) / W(dp), dp his initial spacing, about his support / 2.6: here
             // h / 3, which is d at delta-SPH's default h = 3 d. At h = 2 d, W(d) would make
             // (W(0) / W(dp))^4 = 808 (22 at 3 d), and a pair in slight tension at a free surface

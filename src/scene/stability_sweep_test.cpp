@@ -8,6 +8,7 @@
 // "delta-sph", runs one model only.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
@@ -117,7 +118,7 @@ std::vector<std::string> listItems(const char* text) {
 }
 
 // CI: 600 particles at three ratios and 1200 at h = 2d, both fluid models and DFSPH (boundary
-// particles, no periodic scene), each with the wall models it supports: the paper's with the simple
+// particles), each with the wall models it supports: the paper's with the simple
 // walls and boundary particles, delta-SPH with boundary particles (its default). delta-SPH on the
 // simple walls is not held to the sweep: it failed it while the walls' push was not the gradient of
 // their density share (CPU, 600 particles: the 99.9th percentile of compression 24% at h = 3d, 38%
@@ -125,17 +126,18 @@ std::vector<std::string> listItems(const char* text) {
 // its 36 CPU cases pass (worst single particle +15.5%), but the GPU sweep has not been re-run, and
 // set-up still warns (scene/setup.cpp). WEIR_SWEEP_SIMPLE_DELTA=1 runs those cases too.
 // WEIR_SWEEP_SIZES (e.g. "100000,1000000") runs every size at every ratio instead;
-// WEIR_SWEEP_MODELS (e.g. "delta-sph") only the models listed.
+// WEIR_SWEEP_MODELS (e.g. "delta-sph") only the models listed; WEIR_SWEEP_RATIOS (e.g. "3") only
+// the smoothing ratios listed, of those the model is held to.
 std::vector<SweepCase> sweepCases() {
     std::vector<SweepCase> cases;
     const char* sizes = std::getenv("WEIR_SWEEP_SIZES");
     const char* models = std::getenv("WEIR_SWEEP_MODELS");
+    const char* ratiosWanted = std::getenv("WEIR_SWEEP_RATIOS");
     for (const std::string& model : models != nullptr
                                         ? listItems(models)
                                         : std::vector<std::string>{"delta-sph", "paper", "dfsph"}) {
         for (const std::string& name : builtinSceneNames()) {
             const Scene scene = builtinScene(name);
-            const bool periodic = scene.periodic[0] || scene.periodic[1] || scene.periodic[2];
             for (bool walls : {false, true}) {
                 // Rigid bodies couple through delta-SPH's boundary particles under WCSPH only,
                 // and emitters and sinks run with delta-SPH under WCSPH only (the scene reader
@@ -149,9 +151,8 @@ std::vector<SweepCase> sweepCases() {
                     std::getenv("WEIR_SWEEP_SIMPLE_DELTA") == nullptr) {
                     continue;
                 }
-                // DFSPH runs on boundary particles only, and refuses periodic axes (setup says
-                // so, naming the field).
-                if (model == "dfsph" && (!walls || periodic)) {
+                // DFSPH runs on boundary particles only (setup says so, naming the field).
+                if (model == "dfsph" && !walls) {
                     continue;
                 }
                 // DFSPH is not held to h = 3d: 7 of its 9 cases there blew up within the first
@@ -159,6 +160,16 @@ std::vector<SweepCase> sweepCases() {
                 std::vector<double> ratios = {1.5, 2.0, 3.0};
                 if (model == "dfsph") {
                     ratios = {1.5, 2.0};
+                }
+                if (ratiosWanted != nullptr) {
+                    std::vector<double> wanted;
+                    for (const std::string& item : listItems(ratiosWanted)) {
+                        const double ratio = std::stod(item);
+                        if (std::find(ratios.begin(), ratios.end(), ratio) != ratios.end()) {
+                            wanted.push_back(ratio);
+                        }
+                    }
+                    ratios = wanted;
                 }
                 if (sizes != nullptr) {
                     for (const std::string& size : listItems(sizes)) {

@@ -16,14 +16,16 @@ using namespace weir::testing;
 // A channel periodic along x and z, walls of boundary particles at +-y, the lower half full of
 // water sliding along x and z: the fluid crosses the periodic faces and sloshes.
 Scene slidingChannel(const std::string& model) {
-    return parseScene(R"({
+    // "dfsph": delta-SPH under the DFSPH solver.
+    return parseScene(std::string("{") + (model == "dfsph" ? R"("solver": "dfsph",)" : "") + R"(
         "name": "periodic_channel_sliding",
         "container": {"min": [0, 0, 0], "max": [0.16, 0.12, 0.08],
                       "periodic": [true, false, true]},
         "blocks": [{"min": [0, 0, 0], "max": [0.16, 0.06, 0.08], "velocity": [0.5, 0, 0.2]},
                    {"min": [0, 0.06, 0], "max": [0.08, 0.1, 0.08], "velocity": [-0.3, 0, 0]}],
         "fluid": {"preset": "water", "restDensity": 1000)" +
-                          std::string(R"(, "model": ")") + model + "\"" +
+                          std::string(R"(, "model": ")") +
+                          (model == "dfsph" ? "delta-sph" : model) + "\"" +
                           R"(},
         "particles": {"spacing": 0.01},
         "walls": {"model": "particles"}
@@ -71,6 +73,15 @@ TEST_P(CudaPeriodic, AgreesWithCpu) {
         sumSquares += r2;
         worst = std::max(worst, std::sqrt(r2));
     }
+    if (GetParam().model == "dfsph") {
+        // An iterative solve stops where its mean error crosses the tolerance, so rounding
+        // changes the sweeps and the adaptive dt: DFSPH's own CPU/GPU bounds
+        // (DfsphCuda.AgreesWithCpu).
+        EXPECT_LT(std::sqrt(sumSquares / double(a.size())), 0.5 * report.spacing);
+        EXPECT_NEAR(meanDensity(a), meanDensity(b), 3e-3 * scene.restDensity);
+        EXPECT_NEAR(maxSpeed(a), maxSpeed(b), 0.15 * maxSpeed(a));
+        return;
+    }
     EXPECT_LT(std::sqrt(sumSquares / double(a.size())), 0.002 * report.spacing);
     EXPECT_LT(worst, 0.05 * report.spacing);
     EXPECT_NEAR(meanDensity(a), meanDensity(b), 1e-4 * scene.restDensity);
@@ -82,10 +93,12 @@ INSTANTIATE_TEST_SUITE_P(Models, CudaPeriodic,
                                            Case{"paper", NeighbourMode::Grid},
                                            Case{"delta-sph", NeighbourMode::Dense},
                                            Case{"delta-sph", NeighbourMode::Grid},
-                                           Case{"delta-sph", NeighbourMode::Brute}),
+                                           Case{"delta-sph", NeighbourMode::Brute},
+                                           Case{"dfsph", NeighbourMode::Dense}),
                          [](const auto& info) {
-                             return std::string(info.param.model == "paper" ? "Paper"
-                                                                            : "DeltaSph") +
+                             return std::string(info.param.model == "paper"       ? "Paper"
+                                                : info.param.model == "delta-sph" ? "DeltaSph"
+                                                                                  : "Dfsph") +
                                     neighbourModeName(info.param.mode);
                          });
 

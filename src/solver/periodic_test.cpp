@@ -123,14 +123,20 @@ TEST(Periodic, NeighboursAcrossFacesEqualMinimumImageNeighbours) {
 
 // A channel of water at rest: periodic along x and z, walls of boundary particles at +-y,
 // gravity -y, the fluid filling it.
+// "dfsph" stands for delta-SPH under the DFSPH solver: the scene's "solver" field, if any.
+std::string solverField(const std::string& model) {
+    return model == "dfsph" ? R"("solver": "dfsph",)" : "";
+}
+std::string fluidModel(const std::string& model) { return model == "dfsph" ? "delta-sph" : model; }
+
 Scene restingChannel(const std::string& model) {
-    return parseScene(R"({
+    return parseScene("{" + solverField(model) + R"(
         "name": "periodic_channel_at_rest",
         "container": {"min": [0, 0, 0], "max": [0.16, 0.1, 0.08],
                       "periodic": [true, false, true]},
         "blocks": [{"min": [0, 0, 0], "max": [0.16, 0.1, 0.08]}],
         "fluid": {"preset": "water", "restDensity": 1000)" +
-                          std::string(R"(, "model": ")") + model + "\"" +
+                          std::string(R"(, "model": ")") + fluidModel(model) + "\"" +
                           R"(},
         "particles": {"spacing": 0.01},
         "walls": {"model": "particles"}
@@ -171,10 +177,12 @@ TEST_P(PeriodicModels, ChannelAtRestStaysAtRest) {
     ASSERT_EQ(out.size(), std::size_t(count));
     expectInside(out, scene);
     // Measured (RMS, max): delta-SPH 0.23, 0.41 mm/s (0.09, 0.22 with walls all round); the
-    // paper's model 12, 38 mm/s (7, 55 with walls all round: its tank at rest is as restless).
-    const bool delta = GetParam() == "delta-sph";
-    EXPECT_LT(rmsSpeed(out), delta ? 0.001 : 0.02);
-    EXPECT_LT(maxSpeed(out), delta ? 0.003 : 0.07);
+    // paper's model 12, 38 mm/s (7, 55 with walls all round: its tank at rest is as restless);
+    // DFSPH 24, 58 mm/s, the stir its tanks at rest keep with walls all round too (issue 15,
+    // docs/dfsph.md), and no worse at the faces (below).
+    const bool delta = GetParam() == "delta-sph", dfsph = GetParam() == "dfsph";
+    EXPECT_LT(rmsSpeed(out), delta ? 0.001 : (dfsph ? 0.035 : 0.02));
+    EXPECT_LT(maxSpeed(out), delta ? 0.003 : (dfsph ? 0.09 : 0.07));
     // No seam: the fluid near the periodic faces is as much at rest as the rest of it.
     double seam = 0, inside = 0;
     int seamCount = 0, insideCount = 0;
@@ -189,16 +197,17 @@ TEST_P(PeriodicModels, ChannelAtRestStaysAtRest) {
     EXPECT_LT(std::sqrt(seam / seamCount), 1.3 * std::sqrt(inside / insideCount));
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, PeriodicModels, ::testing::Values("paper", "delta-sph"),
+INSTANTIATE_TEST_SUITE_P(Models, PeriodicModels, ::testing::Values("paper", "delta-sph", "dfsph"),
                          [](const auto& info) {
-                             return info.param == "paper" ? std::string("Paper")
-                                                          : std::string("DeltaSph");
+                             return info.param == "paper"       ? std::string("Paper")
+                                    : info.param == "delta-sph" ? std::string("DeltaSph")
+                                                                : std::string("Dfsph");
                          });
 
 // A box of fluid periodic along all three axes, without gravity, every particle moving.
 Scene periodicBox(const std::string& velocityBelow, const std::string& velocityAbove,
                   const std::string& model) {
-    return parseScene(R"({
+    return parseScene("{" + solverField(model) + R"(
         "name": "periodic_box",
         "container": {"min": [0, 0, 0], "max": [0.1, 0.1, 0.1], "periodic": [true, true, true]},
         "blocks": [{"min": [0, 0, 0], "max": [0.1, 0.05, 0.1], "velocity": )" +
@@ -207,7 +216,7 @@ Scene periodicBox(const std::string& velocityBelow, const std::string& velocityA
                           velocityAbove + R"(}],
         "gravity": [0, 0, 0],
         "fluid": {"preset": "water", "restDensity": 1000)" +
-                          std::string(R"(, "model": ")") + model + "\"" +
+                          std::string(R"(, "model": ")") + fluidModel(model) + "\"" +
                           R"(},
         "particles": {"spacing": 0.01}
     })",
@@ -272,13 +281,12 @@ TEST_P(PeriodicModels, MomentumIsKeptAcrossTheFaces) {
     EXPECT_LT(length(after - before), 1e-4 * scaleBefore) << GetParam();
 }
 
-TEST(Periodic, DeltaSphChannelReachesThePoiseuilleProfile) {
-    // Honey between no-slip walls at y = 0 and H, periodic along x and z, driven by a body force
-    // f along x (as gravity): after a few viscous times H^2 / nu the profile is
-    // u(y) = f y (H - y) / (2 nu). Measured at d = H / 10: 2.2% above it mid-channel, 5% at the
-    // wall layers (the no-slip walls act a little beyond the container); at d = H / 20, 1.3%
-    // (0.0958 against 0.0944 m/s mid-channel), 4% at the wall layers.
-    const Scene scene = parseScene(R"({
+// Honey between no-slip walls at y = 0 and H, periodic along x and z, driven by a body force f
+// along x (as gravity): after a few viscous times H^2 / nu the profile is
+// u(y) = f y (H - y) / (2 nu); each layer of the ten within `tolerance` (+ 1 mm/s). `model`:
+// "delta-sph" (WCSPH) or "dfsph".
+void expectPoiseuilleProfile(const std::string& model, double tolerance) {
+    const Scene scene = parseScene("{" + solverField(model) + R"(
         "container": {"min": [0, 0, 0], "max": [0.024, 0.04, 0.016],
                       "periodic": [true, false, true]},
         "blocks": [{"min": [0, 0, 0], "max": [0.024, 0.04, 0.016]}],
@@ -305,8 +313,26 @@ TEST(Periodic, DeltaSphChannelReachesThePoiseuilleProfile) {
         const double y = (layer + 0.5) * d, want = f * y * (H - y) / (2 * nu);
         ASSERT_GT(count[std::size_t(layer)], 0);
         const double got = sum[std::size_t(layer)] / count[std::size_t(layer)];
-        EXPECT_NEAR(got, want, 0.06 * want + 0.001) << "layer " << layer << " at y = " << y;
+        EXPECT_NEAR(got, want, tolerance * want + 0.001)
+            << model << ": layer " << layer << " at y = " << y;
     }
+}
+
+TEST(Periodic, DeltaSphChannelReachesThePoiseuilleProfile) {
+    // Measured at d = H / 10: 2.2% above it mid-channel, 5% at the wall layers (the no-slip walls
+    // act a little beyond the container); at d = H / 20, 1.3% (0.0958 against 0.0944 m/s
+    // mid-channel), 4% at the wall layers.
+    expectPoiseuilleProfile("delta-sph", 0.06);
+}
+
+TEST(Periodic, DfsphChannelReachesThePoiseuilleProfile) {
+    // The same channel under DFSPH: the ghosts across the faces take their owners' velocities
+    // after every sweep (solver/dfsph/dfsph.h), and the profile comes out symmetric. Measured:
+    // 8.3% above mid-channel, 12.8% at the worst layer (at d = H / 20: 4.9% mid-channel, but the
+    // wall layer 28% slow). Not the faces: under DFSPH the layer next to a wall settles 0.31 d
+    // from it instead of 0.5 d (the wall's boundary volumes read the layer light, and the
+    // density solve only pushes), which moves the no-slip plane (issue 15, docs/dfsph.md).
+    expectPoiseuilleProfile("dfsph", 0.15);
 }
 
 TEST(Periodic, AxisShorterThanTwoRadiiIsRefused) {

@@ -42,6 +42,7 @@ class Dfsph final : public PressureSolver<Exec> {
         for (int k = 0; k < 2; ++k) {
             warm_[k].swap(warmNext_[k]);
         }
+        findOwners(s);
         s.search.visit(s.store.pos(), s.store.count(), [&](const auto& grid) {
             // The positions stay put until the move: one walk of the grid lists the neighbours
             // that every later pass, the solves' sweeps above all, reads.
@@ -51,6 +52,7 @@ class Dfsph final : public PressureSolver<Exec> {
             solve(s, nb, s.store.vel(), true);
             nonPressure(s, nb);
             solve(s, nb, s.store.nextVel(), false);
+            keepWarmStartsById(s);
             advance(s);
         });
         s.store.commitMotion();
@@ -157,6 +159,17 @@ class Dfsph final : public PressureSolver<Exec> {
         s.exec.forEach(pv.count, [=] WEIR_HD(Index i) {
             dfsphDensityFactorAt(i, pv, nb, params, factor, interior);
         });
+        if (periodic_) {
+            const Index* owner = owner_.data();
+            s.exec.forEach(pv.count, [=] WEIR_HD(Index i) {
+                const Index o = owner[i];
+                if (o != i) {
+                    pv.vel[i].w = pv.vel[o].w;
+                    factor[i] = factor[o];
+                    interior[i] = interior[o];
+                }
+            });
+        }
         s.exec.stageEnd("density");
     }
 
@@ -185,6 +198,7 @@ class Dfsph final : public PressureSolver<Exec> {
         s.exec.forEach(pv.count, [=] WEIR_HD(Index i) {
             dfsphNonPressureAt(i, pv, nb, params, state, clock, predicted);
         });
+        copyVelocitiesToGhosts(s, predicted);
         s.exec.stageEnd("force");
     }
 
@@ -205,6 +219,9 @@ class Dfsph final : public PressureSolver<Exec> {
         Real* kappaOverRho = kappaOverRho_.data();
         float* error = error_.data();
         const Index n = pv.count;
+        // The mean error is over the owned particles: a ghost's error is its owner's, counted
+        // once (copyStiffnessToGhosts gives it 0).
+        const Index owned = periodic_ ? n - s.store.ghostCount() : n;
         const Real tolerance = divergence ? params.divergenceTolerance : params.densityTolerance;
         const int minimum = divergence ? 1 : 2;
         const int maximum = sweeps > 0 ? sweeps : params.maxSolverIterations;
@@ -219,24 +236,122 @@ class Dfsph final : public PressureSolver<Exec> {
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
                 dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor);
             });
+            copyVelocitiesToGhosts(s, vel);
         }
         for (int sweep = 0; sweep <= maximum; ++sweep) {
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
                 dfsphPredictAt(i, pv, nb, params, vel, factor, divergence, clock, monitor,
                                kappaOverRho, error, accumulated, interior);
             });
+            copyStiffnessToGhosts(s, kappaOverRho, accumulated, error);
             s.exec.sum(error, n, &monitor->errorSum);
             s.exec.forEach(
-                1, [=] WEIR_HD(Index) { dfsphCheck(monitor, n, tolerance, minimum, maximum); });
+                1, [=] WEIR_HD(Index) { dfsphCheck(monitor, owned, tolerance, minimum, maximum); });
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
                 dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor);
             });
+            copyVelocitiesToGhosts(s, vel);
             const bool poll = !Exec::isDevice || (sweep >= minimum && sweep % 2 == 0);
             if (poll && s.exec.readOne(monitor_, divergence ? 1 : 0).done != 0) {
                 break;
             }
         }
         s.exec.stageEnd(divergence ? "divergence" : "pressure");
+    }
+
+    // ---- Periodic axes (solver/periodic_ghosts.h) ----
+    // A ghost copy across a periodic face is its owner seen from the other side: after every pass
+    // that changes a per-particle quantity of the solve, each ghost takes its owner's, so a sweep
+    // sees across the face what it sees inside the fluid (a ghost's own sums, cut off at the
+    // halo's edge, would creep inwards by h a pass). Owners are found by id: DFSPH runs without
+    // emitters, sinks and ranks, so the owned particles' ids are 0 .. n - 1.
+    void findOwners(Context& s) {
+        periodic_ = s.params.periodicAxes != 0;
+        if (!periodic_) {
+            return;
+        }
+        const Index n = s.store.count();
+        owner_.resize(std::size_t(n));
+        indexOfId_.resize(std::size_t(n));
+        const Real4* pos = s.store.pos();
+        const Index* id = s.store.id();
+        Index *owner = owner_.data(), *indexOfId = indexOfId_.data();
+        s.exec.forEach(n, [=] WEIR_HD(Index i) {
+            if (!isGhost(pos[i]) && id[i] >= 0 && id[i] < n) {
+                indexOfId[id[i]] = i;
+            }
+        });
+        s.exec.forEach(n, [=] WEIR_HD(Index i) {
+            owner[i] = isGhost(pos[i]) && id[i] >= 0 && id[i] < n ? indexOfId[id[i]] : i;
+        });
+        // The warm starts, kept by id from the last step (its ghosts were dropped after it, which
+        // moved the owned particles from where the grid build's reorder expects them).
+        // (Sized once, at the first step: the owned count does not change under DFSPH.)
+        const Index owned = n - s.store.ghostCount();
+        if (warmById_[0].size() < std::size_t(owned)) {
+            for (Buffer<Real>* b : {&warmById_[0], &warmById_[1]}) {
+                b->resize(std::size_t(owned));
+                clear(s.exec, b->data(), owned);
+            }
+        }
+        for (int k = 0; k < 2; ++k) {
+            Real* warm = warm_[k].data();
+            const Real* byId = warmById_[k].data();
+            const Index* ownerOf = owner;
+            s.exec.forEach(n, [=] WEIR_HD(Index i) {
+                const Index o = ownerOf[i];
+                warm[i] = id[o] >= 0 && id[o] < owned ? byId[id[o]] : Real(0);
+            });
+        }
+    }
+
+    // Each ghost's velocity (xyz; its density is its own copy of the owner's) from its owner.
+    void copyVelocitiesToGhosts(Context& s, Real4* vel) {
+        if (!periodic_) {
+            return;
+        }
+        const Index* owner = owner_.data();
+        s.exec.forEach(s.store.count(), [=] WEIR_HD(Index i) {
+            const Index o = owner[i];
+            if (o != i) {
+                vel[i] = Real4::from(vel[o].xyz(), vel[i].w);
+            }
+        });
+    }
+
+    // Each ghost's stiffness and summed stiffness from its owner, and no error of its own.
+    void copyStiffnessToGhosts(Context& s, Real* kappaOverRho, Real* accumulated, float* error) {
+        if (!periodic_) {
+            return;
+        }
+        const Index* owner = owner_.data();
+        s.exec.forEach(s.store.count(), [=] WEIR_HD(Index i) {
+            const Index o = owner[i];
+            if (o != i) {
+                kappaOverRho[i] = kappaOverRho[o];
+                accumulated[i] = accumulated[o];
+                error[i] = 0.0f;
+            }
+        });
+    }
+
+    // The owned particles' summed stiffnesses, by id, for the next step's warm start.
+    void keepWarmStartsById(Context& s) {
+        if (!periodic_) {
+            return;
+        }
+        const Real4* pos = s.store.pos();
+        const Index* id = s.store.id();
+        const Index n = s.store.count(), owned = Index(warmById_[0].size());
+        for (int k = 0; k < 2; ++k) {
+            const Real* warm = warm_[k].data();
+            Real* byId = warmById_[k].data();
+            s.exec.forEach(n, [=] WEIR_HD(Index i) {
+                if (!isGhost(pos[i]) && id[i] >= 0 && id[i] < owned) {
+                    byId[id[i]] = warm[i];
+                }
+            });
+        }
     }
 
     static void clear(Exec& exec, Real* data, Index n) {
@@ -271,9 +386,13 @@ class Dfsph final : public PressureSolver<Exec> {
     void fit(Context& s) {
         const std::size_t n = std::size_t(s.store.count());
         if (warm_[0].size() != n) {
+            // With periodic axes the count changes with the ghosts every step, and the warm
+            // starts come by id (findOwners): no clearing.
             for (Buffer<Real>* b : {&warm_[0], &warm_[1], &warmNext_[0], &warmNext_[1]}) {
                 b->resize(n);
-                clear(s.exec, b->data(), Index(n));
+                if (s.params.periodicAxes == 0) {
+                    clear(s.exec, b->data(), Index(n));
+                }
             }
         }
         factor_.resize(n);
@@ -324,6 +443,10 @@ class Dfsph final : public PressureSolver<Exec> {
     Buffer<float> error_;             // the current sweep's per-particle error, for the sum
     Buffer<Real4> wallState_;         // no-slip walls: each boundary particle's mirrored velocity
     Buffer<DfsphMonitor> monitor_;    // [0] the density solve, [1] the divergence solve
+    bool periodic_ = false;           // periodic axes: ghosts take their owners' state
+    Buffer<Index> owner_;             // periodic: each particle's owner (itself if owned)
+    Buffer<Index> indexOfId_;         // periodic: an owned particle's index by its id
+    Buffer<Real> warmById_[2];        // periodic: the warm starts by id between steps
     NeighbourList<Exec> list_;        // this step's neighbours, when listed_
     bool listed_ = false;             // whether the neighbours are listed (memory allowing)
     bool listDecided_ = false;

@@ -350,7 +350,7 @@ WEIR_HD inline void dfsphAdvanceAt(Index i, const ParticleView& pv, const SphPar
                                    StepClock* clock, const Real4* solved, Real4* newPos,
                                    Real4* newVel) {
     const Real4 start = pv.vel[i];
-    if (clock->dt == Real(0)) {
+    if (clock->dt == Real(0) || isGhost(pv.pos[i])) {  // a no-op step, or a ghost: carried over
         newPos[i] = pv.pos[i];
         newVel[i] = start;
         return;

@@ -206,12 +206,6 @@ TEST(Dfsph, UnsupportedCombinationsFailNamingTheField) {
     const Scene simple = dfsphScene(body + R"(, "walls": {"model": "simple"})");
     EXPECT_NE(messageOf(simple).find("walls.model is \"simple\""), std::string::npos)
         << messageOf(simple);
-    const Scene periodic = parseScene(R"({"solver": "dfsph",
-        "container": {"min": [0, 0, 0], "max": [0.2, 0.3, 0.1], "periodic": [true, false, false]},
-        "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.2, 0.1]}], "particles": {"spacing": 0.02}})",
-                                      "<test>");
-    EXPECT_NE(messageOf(periodic).find("container.periodic has x true"), std::string::npos)
-        << messageOf(periodic);
     try {
         parseScene(R"({"solver": "dfsp", "container": {"min": [0, 0, 0], "max": [1, 1, 1]},
                        "blocks": [{"min": [0, 0, 0], "max": [0.5, 0.5, 0.5]}]})",
