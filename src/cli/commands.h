@@ -101,8 +101,9 @@ struct RenderOptions {
     bool surface = false;  // draw the marching-cubes surface instead of particles
     std::string backend = "auto";            // where the surface is reconstructed
     std::string surfaceField = "isotropic";  // isotropic or anisotropic (surface/surface.h)
-    double spacing = 0;  // particle spacing [m]; 0: from the scene or the first frame
-    int samples = 4;
+    double spacing = 0;            // particle spacing [m]; 0: from the scene or the first frame
+    std::string look = "preview";  // preview (OpenGL) or water (path traced, raytrace/)
+    int samples = 0;  // per pixel: multisampling (preview) or paths (water); 0: the look's default
     bool quiet = false;
     std::optional<std::int64_t> frame;  // --frame N: only this frame
     std::string frames;                 // --frames A:B: frames A to B (cli/frame_selection.h)

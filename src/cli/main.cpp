@@ -102,9 +102,11 @@ void addImageOptions(CLI::App* cmd, weir::RenderOptions& o) {
                     "on the container, yaw 25, pitch 20");
     cmd->add_option("--target", o.target,
                     "Point the camera looks at, x,y,z (default: the container's centre)");
-    cmd->add_option("--samples", o.samples, "Multisampling per pixel (1 = off)")
-        ->check(CLI::Range(1, 16))
-        ->capture_default_str();
+    cmd->add_option("--samples", o.samples,
+                    "Samples per pixel: multisampling of the preview look (1..16, 1 = off, "
+                    "default 4); paths per pixel of `weir render --look water` (1..65536, "
+                    "default 32)")
+        ->check(CLI::Range(1, 65536));
 }
 
 }  // namespace
@@ -277,12 +279,20 @@ int weirMain(int argc, char** argv) {
                           "Scene file or built-in scene whose container and obstacles are drawn "
                           "(default: the run's own, recorded in frames.json; else a box around "
                           "the particles)");
+    renderCmd
+        ->add_option("--look", render.look,
+                     "preview: particles or (--surface) the surface drawn with OpenGL; water: the "
+                     "surface path traced as water (refraction, reflection, absorption; no "
+                     "OpenGL needed; docs/rendering.md)")
+        ->check(CLI::IsMember({"preview", "water"}))
+        ->capture_default_str();
     renderCmd->add_flag("--surface", render.surface,
                         "Draw the fluid's surface (marching cubes) instead of particles");
     addSurfaceField(renderCmd, render.surfaceField, "With --surface: the surface field, ");
     renderCmd
         ->add_option("--backend", render.backend,
-                     "Where --surface is reconstructed: auto, cuda or cpu")
+                     "Where --surface is reconstructed and --look water traced: auto, cuda or "
+                     "cpu")
         ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
         ->capture_default_str();
     renderCmd->add_option("--spacing", render.spacing,

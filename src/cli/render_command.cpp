@@ -14,6 +14,7 @@
 #include "cli/video.h"
 #include "core/backend.h"
 #include "io/frame_index.h"
+#include "raytrace/water_renderer.h"
 #include "render/egl_context.h"
 #include "render/gl.h"
 #include "render/renderer.h"
@@ -58,20 +59,70 @@ void checkImageSize(int width, int height) {
     }
 }
 
-// What every drawing command checks before it starts: image size, samples, colour field.
+// The looks of `weir render --look`: what draws the images, and what --samples counts there.
+enum class Look { Preview, Water };
+
+struct LookInfo {
+    Look look;
+    const char* name;
+    const char* samplesMeaning;
+    int defaultSamples, maxSamples;
+};
+constexpr LookInfo kLooks[] = {
+    {Look::Preview, "preview", "multisampling per pixel", 4, 16},
+    {Look::Water, "water", "paths traced per pixel", 32, 65536},
+};
+
+const LookInfo& lookInfo(const std::string& name) {
+    for (const LookInfo& info : kLooks) {
+        if (name == info.name) {
+            return info;
+        }
+    }
+    throw std::invalid_argument("--look '" + name + "': allowed are preview, water");
+}
+
+// --samples as given, or the look's default.
+int samplesPerPixel(const RenderOptions& o) {
+    return o.samples > 0 ? o.samples : lookInfo(o.look).defaultSamples;
+}
+
+// What every drawing command checks before it starts: image size, look, samples, colour field.
 void checkRenderOptions(const RenderOptions& o) {
     checkImageSize(o.width, o.height);
-    if (o.samples < 1 || o.samples > 16) {
-        throw std::invalid_argument("--samples " + std::to_string(o.samples) +
-                                    " must be within 1..16");
+    const LookInfo& look = lookInfo(o.look);
+    const int samples = samplesPerPixel(o);
+    if (samples < 1 || samples > look.maxSamples) {
+        throw std::invalid_argument("--samples " + std::to_string(samples) + " must be within 1.." +
+                                    std::to_string(look.maxSamples) + " for --look " + look.name +
+                                    " (" + look.samplesMeaning + ")");
     }
     parseColourField(o.color);
     parseBackend(o.backend);
 }
 
-// Draws frames of one run to <imagesDir>/frame_NNNNN.png: an EGL context, the renderer and a
-// fixed camera; particles, or (surface mode) the marching-cubes surface of the particles.
-class FrameImager {
+// Draws frames of one run to <imagesDir>/frame_NNNNN.png with a fixed camera, in one look.
+class Imager {
+   public:
+    virtual ~Imager() = default;
+    // poses: the rigid bodies' at this frame (frames.json), drawn where the scene has them.
+    virtual void render(std::int64_t index, const HostParticles& particles,
+                        const std::vector<BodyPose>& poses) = 0;
+    // What draws the images, for the first line of `weir render`.
+    virtual std::string contextDescription() const = 0;
+    virtual int images() const = 0;
+    virtual std::string timing() const = 0;
+    // The particle radius drawn, and the lattice spacing the surface is built at (2 radii).
+    void setRadius(double radius) { radius_ = radius; }
+    double radius() const { return radius_; }
+
+   protected:
+    double radius_ = 0.01;
+};
+
+// The preview look: an EGL context, the OpenGL renderer; particles, or (surface mode) the
+// marching-cubes surface of the particles.
+class FrameImager : public Imager {
    public:
     FrameImager(const SceneGeometry& geometry, const std::string& imagesDir,
                 const RenderOptions& options, const OrbitCamera& camera)
@@ -86,18 +137,14 @@ class FrameImager {
         fs::create_directories(imagesDir_);
         renderer_.setGeometry(geometry);
         bodies_ = geometry.bodies;
-        renderer_.setSamples(options.samples);
+        renderer_.setSamples(samplesPerPixel(options));
         renderer_.setMode(surface_ ? RenderMode::Surface : RenderMode::Particles);
     }
-    const std::string& contextDescription() const { return context_.description(); }
+    std::string contextDescription() const override { return context_.description(); }
     void setColourRange(const ValueRange& range) { renderer_.setColourRange(range); }
-    // The particle radius drawn, and the lattice spacing the surface is built at (2 radii).
-    void setRadius(double radius) { radius_ = radius; }
-    double radius() const { return radius_; }
 
-    // poses: the rigid bodies' at this frame (frames.json), drawn where the scene has them.
     void render(std::int64_t index, const HostParticles& particles,
-                const std::vector<BodyPose>& poses) {
+                const std::vector<BodyPose>& poses) override {
         const auto start = Clock::now();
         renderer_.setBodies(bodies_, poses);
         if (surface_) {
@@ -114,8 +161,8 @@ class FrameImager {
         seconds_ += secondsSince(start);
         ++images_;
     }
-    int images() const { return images_; }
-    std::string timing() const {
+    int images() const override { return images_; }
+    std::string timing() const override {
         if (images_ == 0) {
             return "no images";
         }
@@ -139,9 +186,116 @@ class FrameImager {
     bool surface_;
     Backend surfaceBackend_;
     SurfaceField surfaceField_;
-    double radius_ = 0.01;
     int images_ = 0;
     double seconds_ = 0, meshSeconds_ = 0;
+};
+
+// A floor checker square of about 1/16 of the container's longer side, rounded down to 1, 2 or 5
+// times a power of ten metres.
+double checkerSquareFor(const Box& container) {
+    const double side =
+        std::max(container.max.x - container.min.x, container.max.z - container.min.z) / 16;
+    if (!(side > 0) || !std::isfinite(side)) {
+        return 0.1;
+    }
+    // log10(0.1) may round to just below -1.
+    const double decade = std::pow(10.0, std::floor(std::log10(side) + 1e-9));
+    for (double step : {5.0, 2.0}) {
+        if (step * decade <= side) {
+            return step * decade;
+        }
+    }
+    return decade;
+}
+
+// The water look (raytrace/): the marching-cubes surface of each frame, path traced as water
+// with the container's floor and far walls, the obstacles and the bodies, under a sky; on the
+// CPU or CUDA, with no OpenGL.
+class WaterImager : public Imager {
+   public:
+    WaterImager(const SceneGeometry& geometry, const std::vector<MeshObstacle>& obstacleMeshes,
+                const std::string& imagesDir, const RenderOptions& options,
+                const OrbitCamera& camera)
+        : geometry_(geometry),
+          obstacleMeshes_(obstacleMeshes),
+          imagesDir_(imagesDir),
+          width_(options.width),
+          height_(options.height),
+          samples_(samplesPerPixel(options)),
+          backend_(parseBackend(options.backend)),
+          surfaceField_(parseSurfaceField(options.surfaceField)),
+          eye_(camera.eye()) {
+        fs::create_directories(imagesDir_);
+        // The preview's camera, so that the two looks' images line up.
+        camera_.eye = Vec3f(camera.eye());
+        camera_.forward = Vec3f(camera.forward());
+        camera_.right = Vec3f(camera.right());
+        camera_.up = Vec3f(camera.up());
+        camera_.tanHalfFovY = float(std::tan(0.5 * camera.fovY * 3.14159265358979323846 / 180));
+        camera_.aspect = float(width_) / float(height_);
+        look_.checkerSize = float(checkerSquareFor(geometry.container));
+    }
+    std::string contextDescription() const override {
+        return "path traced, " + std::to_string(samples_) + " paths per pixel, on " +
+               describeBackend(backend_);
+    }
+
+    void render(std::int64_t index, const HostParticles& particles,
+                const std::vector<BodyPose>& poses) override {
+        const auto start = Clock::now();
+        SurfaceOptions options;
+        options.spacing = 2 * radius_;
+        options.field = surfaceField_;
+        const TriangleMesh mesh = reconstructSurface(backend_, particles, options);
+        meshSeconds_ += secondsSince(start);
+        const auto traceStart = Clock::now();
+        TracingSceneDescription description;
+        description.water = &mesh;
+        description.container = geometry_.container;
+        description.obstacleBoxes = geometry_.obstacleBoxes;
+        description.obstacleSpheres = geometry_.obstacleSpheres;
+        description.obstacleMeshes = obstacleMeshes_;
+        description.bodies = geometry_.bodies;
+        description.bodyPoses = poses;
+        description.cameraEye = eye_;
+        // Where the fluid touches the floor and walls its surface lies within about a particle
+        // radius of them: a spacing takes those faces and no others.
+        description.contactDistance = 2 * radius_;
+        const TracingScene scene(description);
+        Image image(width_, height_);
+        image.rgb = toneMapToSrgb8(
+            traceWaterImage(backend_, scene, look_, camera_, width_, height_, samples_),
+            look_.exposure);
+        traceSeconds_ += secondsSince(traceStart);
+        writePng((fs::path(imagesDir_) / imageName(index)).string(), image);
+        seconds_ += secondsSince(start);
+        ++images_;
+    }
+    int images() const override { return images_; }
+    std::string timing() const override {
+        if (images_ == 0) {
+            return "no images";
+        }
+        const double writing = seconds_ - traceSeconds_ - meshSeconds_;
+        return std::to_string(std::lround(1000 * traceSeconds_ / images_)) +
+               " ms per image to trace (" + std::to_string(samples_) + " paths per pixel on " +
+               backendName(backend_) + ") + " +
+               std::to_string(std::lround(1000 * meshSeconds_ / images_)) + " ms per surface + " +
+               std::to_string(std::lround(1000 * writing / images_)) + " ms to write";
+    }
+
+   private:
+    SceneGeometry geometry_;
+    std::vector<MeshObstacle> obstacleMeshes_;
+    std::string imagesDir_;
+    int width_, height_, samples_;
+    Backend backend_;
+    SurfaceField surfaceField_;
+    Vec3d eye_;
+    PinholeCamera camera_;
+    WaterLook look_;
+    int images_ = 0;
+    double seconds_ = 0, meshSeconds_ = 0, traceSeconds_ = 0;
 };
 
 // `weir run --render`: the scene's geometry and physics fix the camera and colour range.
@@ -284,31 +438,42 @@ int renderCommand(const RenderOptions& options) {
             commandLineCamera(geometry.container, double(options.width) / options.height,
                               options.camera, options.target);
 
-        FrameImager imager(geometry, imagesDir, options, camera);
-        imager.setColourRange(range);
-        imager.setRadius(radius);
+        const Look look = lookInfo(options.look).look;
+        std::unique_ptr<Imager> imager;
+        if (look == Look::Water) {
+            imager = std::make_unique<WaterImager>(
+                geometry, scene ? scene->obstacleMeshes : std::vector<MeshObstacle>{}, imagesDir,
+                options, camera);
+        } else {
+            auto preview = std::make_unique<FrameImager>(geometry, imagesDir, options, camera);
+            preview->setColourRange(range);
+            imager = std::move(preview);
+        }
+        imager->setRadius(radius);
         if (!options.quiet) {
             std::cerr << "weir: rendering " << frames.size() << " frame"
                       << (frames.size() == 1 ? "" : "s") << " of " << options.framesDir << " to "
                       << imagesDir << "/ (" << options.width << "x" << options.height << ", ";
-            if (options.surface) {
+            if (look == Look::Water) {
+                std::cerr << "water look";
+            } else if (options.surface) {
                 std::cerr << "surface";
             } else {
                 std::cerr << colourFieldName(field) << " " << rounded(range.lo, 3) << ".."
                           << rounded(range.hi, 3) << " " << colourFieldUnit(field);
             }
             std::cerr << ", particle spacing " << rounded(2 * radius, 3) << " m, " << sceneFrom
-                      << "; " << imager.contextDescription() << ")\n";
+                      << "; " << imager->contextDescription() << ")\n";
         }
         ItemProgress progress("render", frames.size(), options.quiet);
         for (std::size_t i = 0; i < frames.size(); ++i) {
-            imager.render(frames[i].index, i == 0 ? first : readFrameFile(frames[i].path),
-                          frames[i].bodies);
+            imager->render(frames[i].index, i == 0 ? first : readFrameFile(frames[i].path),
+                           frames[i].bodies);
             progress.update(i + 1);
         }
         progress.finish();
         std::cerr << "weir: " << frames.size() << " image" << (frames.size() == 1 ? "" : "s")
-                  << " in " << imagesDir << "/, " << imager.timing() << ", "
+                  << " in " << imagesDir << "/, " << imager->timing() << ", "
                   << formatDuration(secondsSince(start)) << " in all\n";
 
         if (!options.video.empty()) {

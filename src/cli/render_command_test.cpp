@@ -300,6 +300,85 @@ TEST_F(RenderCli, BadInputIsRefusedWithTheValue) {
     }
 }
 
+// --- the water look (issue 19) -------------------------------------------------------------
+
+// Red over green in a square of pixels about a point: how much of the red the water has taken.
+double redOverGreen(const Image& image, const PixelPoint& at, int half) {
+    double red = 0, green = 0;
+    for (int y = int(at.y) - half; y <= int(at.y) + half; ++y) {
+        for (int x = int(at.x) - half; x <= int(at.x) + half; ++x) {
+            red += image.pixel(x, y)[0];
+            green += image.pixel(x, y)[1];
+        }
+    }
+    return red / green;
+}
+
+TEST_F(RenderCli, WaterLookTracesTheSurfaceWithoutOpenGl) {
+    writeFile("tiny.json", kTinyDrawScene);
+    ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 0 --out frames").exitCode, 0);
+    // No EGL vendor library: the preview look cannot draw, the water look needs none.
+    const std::string noEgl = "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json ";
+    const RunResult preview =
+        shell(noEgl + quoted(WEIR_BINARY) + " render frames --width 64 --height 48 --out none");
+    EXPECT_EQ(preview.exitCode, 1) << preview.output;
+    const RunResult water = shell(noEgl + quoted(WEIR_BINARY) +
+                                  " render frames --look water --width 160 --height 100 "
+                                  "--samples 16 --backend cpu --out water");
+    ASSERT_EQ(water.exitCode, 0) << water.output;
+    EXPECT_TRUE(contains(water.output, "water look"));
+    EXPECT_TRUE(contains(water.output, "16 paths per pixel"));
+    const Image image = readPng(path("water/frame_00000.png"));
+    ASSERT_EQ(image.width, 160);
+    ASSERT_EQ(image.height, 100);
+    // The preview's camera: the block of water (12 x 12 x 8 cm against the far wall, z = 0) is
+    // where the preview draws it. Through its front face the camera sees the far wall through 8
+    // cm of water, lit through the water too: less red against green than the same wall above
+    // the water (Beer-Lambert, red absorbed 5x faster than green).
+    const OrbitCamera camera = frameBox({{0, 0, 0}, {0.3, 0.2, 0.08}}, 160.0 / 100.0);
+    const PixelPoint throughWater = projectToPixel(camera, Vec3d(0.06, 0.05, 0.08), 160, 100);
+    const PixelPoint dryWall = projectToPixel(camera, Vec3d(0.06, 0.175, 0.0), 160, 100);
+    const double wet = redOverGreen(image, throughWater, 2), dry = redOverGreen(image, dryWall, 2);
+    EXPECT_LT(wet, 0.95 * dry) << "red/green through the water " << wet << ", above it " << dry;
+    // The random numbers are a function of pixel and sample: the same image again.
+    ASSERT_EQ(weir("render frames --look water --width 160 --height 100 --samples 16 "
+                   "--backend cpu --quiet --out again")
+                  .exitCode,
+              0);
+    EXPECT_EQ(fileText(dir_ / "water/frame_00000.png"), fileText(dir_ / "again/frame_00000.png"));
+}
+
+TEST_F(RenderCli, WaterLookRefusesBadValuesNamingTheOption) {
+    writeFile("tiny.json", kTinyDrawScene);
+    ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 0 --out frames").exitCode, 0);
+    const RunResult look = weir("render frames --look glass");
+    EXPECT_EQ(look.exitCode, 2) << look.output;
+    EXPECT_TRUE(contains(look.output, "--look"));
+    EXPECT_TRUE(contains(look.output, "glass"));
+    EXPECT_TRUE(contains(look.output, "preview,water"));
+    // --samples counts paths per pixel for the water look (up to 65536), multisampling for the
+    // preview (up to 16).
+    const RunResult tooMany = weir("render frames --look water --samples 70000");
+    EXPECT_EQ(tooMany.exitCode, 2) << tooMany.output;
+    EXPECT_TRUE(contains(tooMany.output, "--samples"));
+    EXPECT_TRUE(contains(tooMany.output, "70000"));
+    const RunResult none = weir("render frames --look water --samples 0");
+    EXPECT_EQ(none.exitCode, 2) << none.output;
+    EXPECT_TRUE(contains(none.output, "--samples"));
+    const RunResult preview = weir("render frames --samples 64");
+    EXPECT_EQ(preview.exitCode, 2) << preview.output;
+    EXPECT_TRUE(contains(preview.output, "--samples 64 must be within 1..16 for --look preview"));
+    const RunResult run = weir("run tiny.json --frames 0 --out again --render --samples 17");
+    EXPECT_EQ(run.exitCode, 2) << run.output;
+    EXPECT_TRUE(contains(run.output, "--samples 17 must be within 1..16"));
+    const RunResult backend = weir("render frames --look water --backend gpu");
+    EXPECT_EQ(backend.exitCode, 2) << backend.output;
+    EXPECT_TRUE(contains(backend.output, "gpu"));
+    EXPECT_FALSE(fs::exists(dir_ / "frames" / "images"));
+    const RunResult help = weir("render --help");
+    EXPECT_TRUE(contains(help.output, "--look"));
+}
+
 // --- the artists' loop (issue 20) ---------------------------------------------------------
 
 TEST_F(RenderCli, RenderNeedsNoSceneAsFramesJsonRecordsIt) {
