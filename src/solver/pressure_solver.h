@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "physics/boundary.h"
 #include "physics/collision.h"
@@ -69,6 +70,10 @@ class PressureSolver {
     virtual std::size_t bytesHeld() const = 0;
     // The iterations since the last call, and a fresh count from here (a host round trip).
     virtual SolverReport takeReport(Exec&) { return {}; }
+    // The pressure the method solved for in its last step, by particle id (ids 0 .. n - 1), into
+    // `byId`; false where the method has none of its own (the frames then carry the equation of
+    // state's, from the density).
+    virtual bool solvedPressure(Exec&, std::vector<Real>& /*byId*/) { return false; }
 };
 
 }  // namespace weir

@@ -104,6 +104,14 @@ class SphSimulation final : public Simulation {
     }
     void download(HostParticles& out) override {
         store_.download(exec_, out, params_, flow_.active() ? flow_.counters(exec_).live : -1);
+        if (method_->solvedPressure(exec_, solvedPressure_)) {
+            for (std::size_t k = 0; k < out.size(); ++k) {
+                const Index id = out.idOf(k);
+                if (id >= 0 && std::size_t(id) < solvedPressure_.size()) {
+                    out.p[k] = solvedPressure_[std::size_t(id)];
+                }
+            }
+        }
         out.bodies.clear();
         if (bodies_.active()) {
             for (const RigidBody& b : bodies_.download(exec_)) {
@@ -247,6 +255,7 @@ class SphSimulation final : public Simulation {
     StepDriver<Exec> driver_;
     std::unique_ptr<PressureSolver<Exec>> method_;
     PeriodicGhosts<Exec> periodic_;
+    std::vector<Real> solvedPressure_;  // the method's own pressure by id, for frames
     RigidBodies<Exec> bodies_;
     InflowOutflow<Exec> flow_;
     Buffer<FaultRecord> fault_;

@@ -53,6 +53,7 @@ class Dfsph final : public PressureSolver<Exec> {
             nonPressure(s, nb);
             solve(s, nb, s.store.nextVel(), false);
             keepWarmStartsById(s);
+            keepPressureById(s);
             advance(s);
         });
         s.store.commitMotion();
@@ -105,7 +106,8 @@ class Dfsph final : public PressureSolver<Exec> {
                (factor_.size() + kappaOverRho_.size() + 2 * warm_[0].size() + 2 * warm_[1].size()) *
                    sizeof(Real) +
                error_.size() * sizeof(float) + interior_.size() +
-               wallState_.size() * sizeof(Real4) + monitor_.size() * sizeof(DfsphMonitor);
+               wallState_.size() * sizeof(Real4) + monitor_.size() * sizeof(DfsphMonitor) +
+               impulseById_.size() * sizeof(Real);
     }
 
     SolverReport takeReport(Exec& exec) override {
@@ -257,6 +259,60 @@ class Dfsph final : public PressureSolver<Exec> {
             }
         }
         s.exec.stageEnd(divergence ? "divergence" : "pressure");
+    }
+
+    // Each owned particle's pressure for frames, by id: the mean over the steps since the particles
+    // were last downloaded of what the two solves applied. A sweep's velocity update is
+    // -dt sum m (k_i / rho_i + k_j / rho_j) grad W, the pressure force's p_i / rho_i^2 = k_i /
+    // rho_i, so a step's pressure impulse p dt is rho (K dt + K_v), K the density solve's summed k
+    // and K_v the divergence solve's sum (kept as k dt). The divergence solve removes what the last
+    // step left, so one step's share would depend on how short the step that lands on a frame is;
+    // the frame's mean does not.
+    void keepPressureById(Context& s) {
+        const Index n = s.store.count();
+        const Index owned = n - s.store.ghostCount();
+        if (impulseById_.size() != std::size_t(owned)) {
+            impulseById_.resize(std::size_t(owned));
+            clear(s.exec, impulseById_.data(), owned);
+            impulseTime_.resize(1);
+            clear(s.exec, impulseTime_.data(), 1);
+        }
+        const Real4* pos = s.store.pos();
+        const Real4* vel = s.store.vel();
+        const Index* id = s.store.id();
+        const Real* density = warm_[0].data();
+        const Real* divergence = warm_[1].data();
+        const bool divergenceSolved = s.params.divergenceTolerance > Real(0);
+        const StepClock* clock = s.clock;
+        Real* impulse = impulseById_.data();
+        s.exec.forEach(n, [=] WEIR_HD(Index i) {
+            if (!isGhost(pos[i]) && id[i] >= 0 && id[i] < owned) {
+                const Real k =
+                    density[i] * clock->dt + (divergenceSolved ? divergence[i] : Real(0));
+                impulse[id[i]] += k * vel[i].w;
+            }
+        });
+        Real* time = impulseTime_.data();
+        s.exec.forEach(1, [=] WEIR_HD(Index) { time[0] += clock->dt; });
+    }
+
+    bool solvedPressure(Exec& exec, std::vector<Real>& byId) override {
+        if (impulseTime_.size() == 0) {
+            return false;
+        }
+        Real time = 0;
+        exec.download(impulseTime_, &time, 1);
+        if (time <= Real(0)) {
+            return false;  // no step since the last download: the equation of state's
+        }
+        byId.resize(impulseById_.size());
+        exec.download(impulseById_, byId.data(), byId.size());
+        for (Real& p : byId) {
+            p /= time;
+        }
+        clear(exec, impulseById_.data(), Index(impulseById_.size()));
+        clear(exec, impulseTime_.data(), 1);
+        return true;
     }
 
     // ---- Periodic axes (solver/periodic_ghosts.h) ----
@@ -447,6 +503,8 @@ class Dfsph final : public PressureSolver<Exec> {
     Buffer<Index> owner_;             // periodic: each particle's owner (itself if owned)
     Buffer<Index> indexOfId_;         // periodic: an owned particle's index by its id
     Buffer<Real> warmById_[2];        // periodic: the warm starts by id between steps
+    Buffer<Real> impulseById_;        // per id, the solves' pressure impulse since the last frame
+    Buffer<Real> impulseTime_;        // [0]: the time those impulses span
     NeighbourList<Exec> list_;        // this step's neighbours, when listed_
     bool listed_ = false;             // whether the neighbours are listed (memory allowing)
     bool listDecided_ = false;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "scene/scene.h"
 #include "scene/setup.h"
@@ -99,6 +100,35 @@ TEST(Dfsph, TankAtRestHoldsRestDensityAndStaysAtRest) {
         onPlanes += p.y[i] <= 1e-6 || p.x[i] <= 1e-6 || p.x[i] >= 0.2 - 1e-6 ? 1 : 0;
     }
     EXPECT_EQ(onPlanes, 0);
+    // The frames carry the pressure the solves applied (their impulses over the steps since the
+    // last download, per unit time), not the equation of state's, which for a fluid held at rho0
+    // within 0.1% reads about 0. Below the top and above the floor layer each 1 cm layer's mean
+    // is hydrostatic, rho0 g (depth), within 20%, and the pressure grows with depth at rho0 g
+    // within 20% (fitted). Measured: the fitted gradient 1.155 rho0 g (WCSPH's tanks read 8-10%
+    // steep before the kernel gradient's lattice correction, docs/physics.md), the floor layer
+    // pressed onto the wall, the top layer light by summation.
+    const double d = 0.01, top = 0.2, g = 9.81;
+    std::vector<double> sum(20, 0.0), ySum(20, 0.0);
+    std::vector<int> count(20, 0);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const int layer = std::clamp(int(p.y[i] / d), 0, 19);
+        sum[std::size_t(layer)] += p.p[i];
+        ySum[std::size_t(layer)] += p.y[i];
+        ++count[std::size_t(layer)];
+    }
+    double sy = 0, sp = 0, syy = 0, syp = 0;
+    int used = 0;
+    for (int layer = 2; layer <= 16; ++layer) {
+        ASSERT_GT(count[std::size_t(layer)], 0);
+        const double y = ySum[std::size_t(layer)] / count[std::size_t(layer)];
+        const double pressure = sum[std::size_t(layer)] / count[std::size_t(layer)];
+        const double hydrostatic = scene.restDensity * g * (top - y);
+        EXPECT_NEAR(pressure / hydrostatic, 1.0, 0.2) << "layer " << layer << " at y = " << y;
+        sy += y, sp += pressure, syy += y * y, syp += y * pressure;
+        ++used;
+    }
+    const double slope = (used * syp - sy * sp) / (used * syy - sy * sy);
+    EXPECT_NEAR(-slope / (scene.restDensity * g), 1.0, 0.2);
 }
 
 // The dam break: every frame within the solver's tolerance (mean compression under 0.1%), the
