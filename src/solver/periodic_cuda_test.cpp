@@ -48,11 +48,24 @@ TEST_P(CudaPeriodic, AgreesWithCpu) {
     if (!cudaDeviceAvailable()) {
         GTEST_SKIP() << "no CUDA device visible";
     }
-    const Scene scene = slidingChannel(GetParam().model);
+    // DFSPH is compared on a gentler flow and over fewer steps: its solves stop at the sweep
+    // whose mean error crosses the tolerance and clamp each particle's stiffness at zero, so a
+    // rounding difference can change a discrete decision, and the sliding channel's free surface
+    // amplifies that. Measured on the CPU alone, a start speed changed by 1e-5 m/s moved the
+    // particles of the sliding channel by 0.2 d RMS after 40 steps and 3 d after 200; of the
+    // channel below, full and moving as a whole, by 3.5e-4 d after 20 steps.
+    const bool dfsph = GetParam().model == "dfsph";
+    const Scene scene = dfsph ? parseScene(R"({"solver": "dfsph",
+        "container": {"min": [0, 0, 0], "max": [0.16, 0.1, 0.08], "periodic": [true, false, true]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.16, 0.1, 0.08], "velocity": [0.5, 0, 0.2]}],
+        "fluid": {"preset": "water", "restDensity": 1000, "model": "delta-sph"},
+        "particles": {"spacing": 0.01}, "walls": {"model": "particles"}})",
+                                           "<test periodic channel moving>")
+                              : slidingChannel(GetParam().model);
     SetupReport report;
     auto cpu = start(scene, Backend::Cpu, GetParam().mode, &report);
     auto gpu = start(scene, Backend::Cuda, GetParam().mode);
-    const int steps = 200;
+    const int steps = dfsph ? 20 : 200;
     HostParticles a = stateAfter(*cpu, steps), b = stateAfter(*gpu, steps);
     ASSERT_EQ(cpu->fault().code, 0);
     ASSERT_EQ(gpu->fault().code, 0);
@@ -72,15 +85,6 @@ TEST_P(CudaPeriodic, AgreesWithCpu) {
         }
         sumSquares += r2;
         worst = std::max(worst, std::sqrt(r2));
-    }
-    if (GetParam().model == "dfsph") {
-        // An iterative solve stops where its mean error crosses the tolerance, so rounding
-        // changes the sweeps and the adaptive dt: DFSPH's own CPU/GPU bounds
-        // (DfsphCuda.AgreesWithCpu).
-        EXPECT_LT(std::sqrt(sumSquares / double(a.size())), 0.5 * report.spacing);
-        EXPECT_NEAR(meanDensity(a), meanDensity(b), 3e-3 * scene.restDensity);
-        EXPECT_NEAR(maxSpeed(a), maxSpeed(b), 0.15 * maxSpeed(a));
-        return;
     }
     EXPECT_LT(std::sqrt(sumSquares / double(a.size())), 0.002 * report.spacing);
     EXPECT_LT(worst, 0.05 * report.spacing);
