@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/sphere_lattice.h"
+
 namespace weir {
 
 namespace {
@@ -61,12 +63,7 @@ template <class Place, class Turn>
 void addSphere(TriangleSoup& soup, const SphereShape& sphere, TriangleKind kind, Place place,
                Turn turn) {
     constexpr int kSlices = 64, kStacks = 32;
-    constexpr double pi = 3.14159265358979323846;
-    auto unit = [&](int i, int j) {
-        const double theta = pi * j / kStacks, phi = 2 * pi * i / kSlices;
-        return Vec3d{std::sin(theta) * std::cos(phi), std::cos(theta),
-                     std::sin(theta) * std::sin(phi)};
-    };
+    auto unit = [&](int i, int j) { return sphereLatticeNormal(i, j, kSlices, kStacks); };
     for (int j = 0; j < kStacks; ++j) {
         for (int i = 0; i < kSlices; ++i) {
             const Vec3d n[4] = {unit(i, j), unit(i + 1, j), unit(i + 1, j + 1), unit(i, j + 1)};

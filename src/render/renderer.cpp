@@ -9,6 +9,7 @@
 
 #include "render/bitmap_font.h"
 #include "render/gl.h"
+#include "scene/sphere_lattice.h"
 
 namespace weir {
 
@@ -297,12 +298,7 @@ void appendBox(const Box& box, std::vector<float>& out) {
 
 void appendSphere(const SphereShape& sphere, std::vector<float>& out) {
     constexpr int kSlices = 32, kStacks = 16;
-    constexpr double kPi = 3.14159265358979323846;
-    auto point = [&](int i, int j) {
-        const double theta = kPi * j / kStacks, phi = 2 * kPi * i / kSlices;
-        return Vec3d{std::sin(theta) * std::cos(phi), std::cos(theta),
-                     std::sin(theta) * std::sin(phi)};
-    };
+    auto point = [&](int i, int j) { return sphereLatticeNormal(i, j, kSlices, kStacks); };
     for (int j = 0; j < kStacks; ++j) {
         for (int i = 0; i < kSlices; ++i) {
             const Vec3d n[4] = {point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)};
