@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "core/team.h"
 #include "grid/neighbour_list.h"
@@ -261,8 +262,8 @@ class Dfsph final : public PressureSolver<Exec> {
         s.exec.stageEnd(divergence ? "divergence" : "pressure");
     }
 
-    // Each owned particle's pressure for frames, by id: the mean over the steps since the particles
-    // were last downloaded of what the two solves applied. A sweep's velocity update is
+    // Each owned particle's pressure for frames, by id: the mean over the steps since it was last
+    // asked for of what the two solves applied. A sweep's velocity update is
     // -dt sum m (k_i / rho_i + k_j / rho_j) grad W, the pressure force's p_i / rho_i^2 = k_i /
     // rho_i, so a step's pressure impulse p dt is rho (K dt + K_v), K the density solve's summed k
     // and K_v the divergence solve's sum (kept as k dt). The divergence solve removes what the last
@@ -296,22 +297,28 @@ class Dfsph final : public PressureSolver<Exec> {
         s.exec.forEach(1, [=] WEIR_HD(Index) { time[0] += clock->dt; });
     }
 
+    // The mean since the last time it was asked for, kept on the host until a step follows, so
+    // that every download between two steps (the frame, the renderer, a script's arrays) gets
+    // the same values.
     bool solvedPressure(Exec& exec, std::vector<Real>& byId) override {
         if (impulseTime_.size() == 0) {
             return false;
         }
         Real time = 0;
         exec.download(impulseTime_, &time, 1);
-        if (time <= Real(0)) {
-            return false;  // no step since the last download: the equation of state's
+        if (time > Real(0)) {
+            lastPressure_.resize(impulseById_.size());
+            exec.download(impulseById_, lastPressure_.data(), lastPressure_.size());
+            for (Real& p : lastPressure_) {
+                p /= time;
+            }
+            clear(exec, impulseById_.data(), Index(impulseById_.size()));
+            clear(exec, impulseTime_.data(), 1);
         }
-        byId.resize(impulseById_.size());
-        exec.download(impulseById_, byId.data(), byId.size());
-        for (Real& p : byId) {
-            p /= time;
+        if (lastPressure_.empty()) {
+            return false;  // no step yet: the equation of state's
         }
-        clear(exec, impulseById_.data(), Index(impulseById_.size()));
-        clear(exec, impulseTime_.data(), 1);
+        byId = lastPressure_;
         return true;
     }
 
@@ -505,6 +512,7 @@ class Dfsph final : public PressureSolver<Exec> {
     Buffer<Real> warmById_[2];        // periodic: the warm starts by id between steps
     Buffer<Real> impulseById_;        // per id, the solves' pressure impulse since the last frame
     Buffer<Real> impulseTime_;        // [0]: the time those impulses span
+    std::vector<Real> lastPressure_;  // host: the last mean handed out, by id
     NeighbourList<Exec> list_;        // this step's neighbours, when listed_
     bool listed_ = false;             // whether the neighbours are listed (memory allowing)
     bool listDecided_ = false;
