@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "scene/sphere_lattice.h"
+#include "scene/shape_tessellation.h"
 
 namespace weir {
 
@@ -38,17 +38,10 @@ struct TriangleSoup {
 // A shape's triangles in its own frame, then placed by a map (identity for static obstacles).
 template <class Place, class Turn>
 void addBox(TriangleSoup& soup, const Box& box, TriangleKind kind, Place place, Turn) {
-    const Vec3d& a = box.min;
-    const Vec3d& b = box.max;
     for (int axis = 0; axis < 3; ++axis) {
         for (int side = 0; side < 2; ++side) {
-            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
             Vec3d corner[4];
-            for (int k = 0; k < 4; ++k) {
-                corner[k][axis] = side ? b[axis] : a[axis];
-                corner[k][u] = (k == 1 || k == 2) ? b[u] : a[u];
-                corner[k][v] = (k >= 2) ? b[v] : a[v];
-            }
+            boxFaceCorners(box, axis, side, corner);
             // Counter-clockwise seen from outside: the face normal points out.
             const int order[2][6] = {{0, 3, 2, 0, 2, 1}, {0, 1, 2, 0, 2, 3}};
             for (int t = 0; t < 2; ++t) {

@@ -9,7 +9,7 @@
 
 #include "render/bitmap_font.h"
 #include "render/gl.h"
-#include "scene/sphere_lattice.h"
+#include "scene/shape_tessellation.h"
 
 namespace weir {
 
@@ -276,19 +276,12 @@ void pushVertex(std::vector<float>& out, const Vec3d& p, const Vec3d& n) {
 
 // Two triangles per face, outward normals.
 void appendBox(const Box& box, std::vector<float>& out) {
-    const Vec3d& a = box.min;
-    const Vec3d& b = box.max;
     for (int axis = 0; axis < 3; ++axis) {
         for (int side = 0; side < 2; ++side) {
             Vec3d n{};
             n[axis] = side ? 1 : -1;
-            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
             Vec3d corner[4];
-            for (int k = 0; k < 4; ++k) {
-                corner[k][axis] = side ? b[axis] : a[axis];
-                corner[k][u] = (k == 1 || k == 2) ? b[u] : a[u];
-                corner[k][v] = (k >= 2) ? b[v] : a[v];
-            }
+            boxFaceCorners(box, axis, side, corner);
             for (int k : {0, 1, 2, 0, 2, 3}) {
                 pushVertex(out, corner[k], n);
             }
