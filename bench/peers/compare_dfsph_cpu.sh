@@ -22,7 +22,7 @@ export OMP_NUM_THREADS=$threads
 # REUSE_PEER=1 keeps an earlier run's results in the out-dir (to re-measure weir alone).
 if [ -z "${REUSE_PEER:-}" ] || [ ! -f "$out/splishsplash.json" ]; then
     LD_PRELOAD=/lib/x86_64-linux-gnu/libGLdispatch.so.0 \
-        "$python" "$root/bench/peers/splishsplash_dfsph.py" "$radius" "$duration" \
+        "$python" "$root/bench/peers/splishsplash_dam_break.py" "$radius" "$duration" \
         "$out/splishsplash.json" >"$out/splishsplash.log" 2>&1
 fi
 

@@ -1,9 +1,11 @@
-"""SPlisHSPlasH's DFSPH (pip install pysplishsplash) on its dam break, for weir's CPU comparison.
+"""SPlisHSPlasH (pip install pysplishsplash) on its dam break, for weir's CPU comparisons.
 
-Usage: python splishsplash_dfsph.py RADIUS DURATION OUT_JSON
+Usage: python splishsplash_dam_break.py RADIUS DURATION OUT_JSON [dfsph|wcsph]
 Runs SPlisHSPlasH's DamBreakModel layout (a 1 m cube of water at one end of a 4 x 3 x 1.5 m
-box) at particle radius RADIUS with Akinci et al. 2012 boundary particles (as weir's walls) and
-weir's default tolerances (mean density error 0.01%, divergence error 0.1%), and writes to
+box) at particle radius RADIUS with Akinci et al. 2012 boundary particles (as weir's walls),
+under DFSPH (the default; weir's default tolerances: mean density error 0.01%, divergence error
+0.1%) or WCSPH (SPlisHSPlasH's defaults: stiffness 50000, exponent 7; its CFL step on the
+largest speed, at most 0.5 ms, where weir's follows a speed of sound), and writes to
 OUT_JSON the stepping wall time, steps, and every frame's (1/30 s) mean and largest compression
 max(rho / rho0 - 1, 0) over the particles. Its own per-stage summary (iterations) goes to
 stdout. The wheel's bundled GL libraries clash with Debian's libGLX at import: run it with
@@ -19,6 +21,7 @@ import numpy as np
 import pysplishsplash as sph
 
 radius, duration, out_path = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
+method = sys.argv[4] if len(sys.argv) > 4 else "dfsph"
 work = tempfile.mkdtemp(prefix="splish-")
 with open(os.path.join(work, "UnitBox.obj"), "w") as f:
     # A unit cube centred at the origin, faces wound outwards (the scene inverts it: the fluid
@@ -47,12 +50,12 @@ f 2 7 6
 scene = {
     "Configuration": {
         "particleRadius": radius,
-        "simulationMethod": 4,  # DFSPH
+        "simulationMethod": 4 if method == "dfsph" else 0,  # DFSPH or WCSPH
         "gravitation": [0, -9.81, 0],
-        "timeStepSize": 0.001,
+        "timeStepSize": 0.001 if method == "dfsph" else 0.0005,
         "cflMethod": 1,
         "cflFactor": 1,
-        "cflMaxTimeStepSize": 0.005,
+        "cflMaxTimeStepSize": 0.005 if method == "dfsph" else 0.0005,
         "boundaryHandlingMethod": 0,  # Akinci et al. 2012 boundary particles
         "DFSPH": {"minIterations": 2, "maxIterations": 100, "maxError": 0.01,
                   "maxIterationsV": 100, "maxErrorV": 0.1, "enableDivergenceSolver": True},
@@ -99,7 +102,7 @@ start = time.perf_counter()
 base.run()
 wall = time.perf_counter() - start
 with open(out_path, "w") as f:
-    json.dump({"code": "SPlisHSPlasH " + getattr(sph, "__version__", "2.19.0"),
+    json.dump({"code": "SPlisHSPlasH " + getattr(sph, "__version__", "2.19.0"), "method": method,
                "particles": state.get("particles", 0), "radius": radius,
                "duration": duration, "steps": state["steps"],
                "steppingSeconds": wall - state["measuring"], "frames": state["frames"]},
