@@ -2,7 +2,8 @@
 #   cmake -DSOURCE_DIR=<repo>/src -DLISTED=<file listing the sources of every target> -P this
 # Fails when a file includes from a folder above its own, or when a source file in src/ belongs to
 # no target. The layers, lowest first (docs/architecture.md):
-set(layers core grid physics solver scene cluster surface io validate raytrace render cli python)
+set(layers core grid physics solver scene cluster surface io whitewater validate raytrace render cli
+           python)
 # Tests may also use scene/ for their fixtures: a scene file is the shortest honest way to make a
 # fluid to test a solver with.
 set(fixture_layers scene)

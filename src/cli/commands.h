@@ -104,6 +104,11 @@ struct RenderOptions {
     double spacing = 0;            // particle spacing [m]; 0: from the scene or the first frame
     std::string look = "preview";  // preview (OpenGL) or water (path traced, raytrace/)
     int samples = 0;  // per pixel: multisampling (preview) or paths (water); 0: the look's default
+    std::string exportWater;  // --look water: also write what is traced here; empty: nothing
+    // Spray, foam and bubbles (whitewater_NNNNN.ply, `weir whitewater`) drawn with the fluid from
+    // this folder; empty: FRAMES/whitewater where it exists. noWhitewater: none.
+    std::string whitewater;
+    bool noWhitewater = false;
     bool quiet = false;
     std::optional<std::int64_t> frame;  // --frame N: only this frame
     std::string frames;                 // --frames A:B: frames A to B (cli/frame_selection.h)
@@ -134,6 +139,19 @@ struct UsdOptions {
     double spacing = 0;  // particle spacing [m]; 0: the run's, else measured on the first frame
     std::optional<std::int64_t> frame;  // --frame N: only this frame
     std::string frames;                 // --frames A:B: frames A to B
+};
+
+// `weir whitewater` and `weir run --whitewater`: spray, foam and bubbles (src/whitewater/).
+struct WhitewaterOptions {
+    std::string framesDir;
+    std::string outDir;  // empty: <framesDir>/whitewater
+    std::string frames;  // --frames A:B: frames A to B (the first starts with none)
+    std::int64_t maxParticles = 2'000'000;
+    double rate = 100;     // diffuse particles per fluid particle per second at full potential
+    double lifetime = 2;   // foam's mean lifetime [s]
+    int substeps = 0;      // per frame interval; 0: automatic
+    bool explain = false;  // print the scale, the thresholds and the potentials of the first frame
+    bool quiet = false;
 };
 
 struct ViewOptions {
@@ -192,6 +210,10 @@ int meshCommand(const MeshOptions& options);
 // `weir run --mesh`: writes <out>/mesh/surface_NNNNN.{obj,ply} for every frame. Throws
 // std::invalid_argument for bad options.
 std::unique_ptr<RunObserver> makeRunMesher(const MeshOptions& options);
+int whitewaterCommand(const WhitewaterOptions& options);
+// `weir run --whitewater`: <out>/whitewater/whitewater_NNNNN.ply for every frame. Throws
+// std::invalid_argument for bad options.
+std::unique_ptr<RunObserver> makeRunWhitewater(const WhitewaterOptions& options);
 int usdCommand(const UsdOptions& options);
 // `weir run --usd`: after the run's last frame, <out>/frames.usda (or options.outPath).
 std::unique_ptr<RunObserver> makeRunUsdWriter(const UsdOptions& options);

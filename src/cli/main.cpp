@@ -187,8 +187,8 @@ int weirMain(int argc, char** argv) {
     runCmd->add_option("--out,-o", run.outDir, "Output directory (default out/<scene name>)");
     runCmd->add_flag("--overwrite", run.overwrite,
                      "Replace the frames of an earlier run in the output directory (they are "
-                     "removed first, with its images/ and mesh/ files); without it such a "
-                     "directory is refused");
+                     "removed first, with its images/, mesh/ and whitewater/ files); without it "
+                     "such a directory is refused");
     runCmd->add_option("--format", run.format, "Frame format. " + frameFormatHelp())
         ->check(frameFormatValidator())
         ->capture_default_str();
@@ -215,6 +215,11 @@ int weirMain(int argc, char** argv) {
     runCmd->add_flag("--usd", run.usd,
                      "Also write all frames (and, with --mesh, the surfaces) as one USD stage, "
                      "OUT/frames.usda, after the last frame");
+    WhitewaterOptions runWhitewater;
+    bool runWithWhitewater = false;
+    runCmd->add_flag("--whitewater", runWithWhitewater,
+                     "Also write every frame's spray, foam and bubbles to "
+                     "OUT/whitewater/whitewater_NNNNN.ply (as `weir whitewater` does)");
     addSurfaceField(runCmd, runMesh.surfaceField,
                     "With --mesh (and --render --surface): the surface field, ");
     runCmd->add_option("--cell-size", runMesh.cellSize,
@@ -288,6 +293,10 @@ int weirMain(int argc, char** argv) {
         ->capture_default_str();
     renderCmd->add_flag("--surface", render.surface,
                         "Draw the fluid's surface (marching cubes) instead of particles");
+    renderCmd->add_option("--export-water", render.exportWater,
+                          "With --look water: also write what is traced into this folder, for "
+                          "other renderers: per frame the water's triangles (.obj), camera and "
+                          "constants (.json), linear radiance (.pfm); sky.hdr (docs/rendering.md)");
     addSurfaceField(renderCmd, render.surfaceField, "With --surface: the surface field, ");
     renderCmd
         ->add_option("--backend", render.backend,
@@ -301,6 +310,13 @@ int weirMain(int argc, char** argv) {
                           "else measured on the first frame)");
     renderCmd->add_option("--video", render.video,
                           "Also encode the images into this .mp4 with ffmpeg (H.264)");
+    CLI::Option* withWhitewater = renderCmd->add_option(
+        "--whitewater", render.whitewater,
+        "Folder of whitewater_NNNNN.ply files (weir whitewater) to draw with the fluid: white "
+        "sprites (preview), white matte octahedra (water look); default FRAMES/whitewater where "
+        "it exists");
+    renderCmd->add_flag("--no-whitewater", render.noWhitewater, "Draw no spray, foam or bubbles")
+        ->excludes(withWhitewater);
     renderCmd->add_flag("--quiet,-q", render.quiet, "No progress line");
     addFrameSelection(renderCmd, render.frame, render.frames);
 
@@ -345,12 +361,52 @@ int weirMain(int argc, char** argv) {
                        "Particle spacing in metres: the points' width (default: the run's)");
     addFrameSelection(usdCmd, usd.frame, usd.frames);
 
+    WhitewaterOptions whitewater;
+    CLI::App* whitewaterCmd = app.add_subcommand(
+        "whitewater",
+        "Spray, foam and bubbles (Ihmsen et al. 2012): diffuse particles generated where the "
+        "fluid traps air, breaks into crests and moves fast, advanced from frame to frame; "
+        "whitewater_NNNNN.ply per frame (CPU)");
+    addFramesDirectory(whitewaterCmd, whitewater.framesDir);
+    whitewaterCmd->add_option("--out,-o", whitewater.outDir,
+                              "Whitewater directory (default FRAMES/whitewater)");
+    whitewaterCmd->add_option(
+        "--frames", whitewater.frames,
+        "Only frames A to B, both included (A:B; A: from A on, :B up to B); frame A has none");
+    whitewaterCmd
+        ->add_option("--max-particles", whitewater.maxParticles,
+                     "At most this many diffuse particles; generation stops at the cap")
+        ->transform(countOption(0, std::int64_t(1) << 40))
+        ->capture_default_str();
+    whitewaterCmd
+        ->add_option("--rate", whitewater.rate,
+                     "Diffuse particles per fluid particle per second at full potential "
+                     "(the paper's k_ta and k_wc)")
+        ->check(CLI::Range(0.0, 1e6))
+        ->capture_default_str();
+    whitewaterCmd
+        ->add_option("--lifetime", whitewater.lifetime,
+                     "Foam's mean lifetime in seconds (each lives 0.5..1.5 times it)")
+        ->check(CLI::Range(1e-6, 1e6))
+        ->capture_default_str();
+    whitewaterCmd
+        ->add_option("--substeps", whitewater.substeps,
+                     "Advection sub-steps per frame interval (0: enough that none moves more "
+                     "than h/2 in one)")
+        ->check(CLI::Range(0, 10000))
+        ->capture_default_str();
+    whitewaterCmd->add_flag("--explain", whitewater.explain,
+                            "Print the scale, the thresholds in physical units, the potentials "
+                            "of the first frame and every frame's counts");
+    whitewaterCmd->add_flag("--quiet,-q", whitewater.quiet, "No progress line");
+
     ViewOptions view;
     CLI::App* viewCmd = app.add_subcommand(
         "view",
         "Simulate a scene in a window and draw it as it runs. Keys: space pause, s single step, "
-        "r reset, c colouring, m particles/surface, f frame the scene, arrows orbit, +/- zoom, "
-        "q quit. Mouse: left drag orbit, right (or shift+left) drag pan, wheel zoom");
+        "r reset, c colouring, m particles/surface, w water look (live path tracing, CUDA), "
+        "f frame the scene, arrows orbit, +/- zoom, q quit. Mouse: left drag orbit, right (or "
+        "shift+left) drag pan, wheel zoom");
     viewCmd->add_option("scene", view.scene,
                         "Scene JSON file or built-in scene (" + scenes + "); default dam_break");
     viewCmd->add_option("--backend", view.backend, "auto (GPU if present), cuda or cpu")
@@ -482,6 +538,10 @@ int weirMain(int argc, char** argv) {
         run.cellSize = runMesh.cellSize;
         try {
             RunObserverList observers;
+            // Before the renderer, which draws each frame's whitewater once it is written.
+            if (runWithWhitewater) {
+                observers.add(makeRunWhitewater(runWhitewater));
+            }
             if (run.render) {
 #if defined(WEIR_HAS_RENDER)
                 runRender.backend = run.backend;
@@ -531,6 +591,9 @@ int weirMain(int argc, char** argv) {
     }
     if (usdCmd->parsed()) {
         return usdCommand(usd);
+    }
+    if (whitewaterCmd->parsed()) {
+        return whitewaterCommand(whitewater);
     }
     if (benchCmd->parsed()) {
         std::unique_ptr<SpriteDrawTimer> spriteTimer;

@@ -14,12 +14,16 @@
 #include "cli/video.h"
 #include "core/backend.h"
 #include "io/frame_index.h"
+#include "raytrace/interactive_water.h"
 #include "raytrace/water_renderer.h"
+#include "raytrace/water_scene_export.h"
 #include "render/egl_context.h"
 #include "render/gl.h"
 #include "render/renderer.h"
 #include "scene/setup.h"
 #include "surface/surface.h"
+#include "whitewater/whitewater_files.h"
+#include "whitewater/whitewater_ply.h"
 
 namespace weir {
 
@@ -94,11 +98,15 @@ void checkRenderOptions(const RenderOptions& o) {
     const int samples = samplesPerPixel(o);
     if (samples < 1 || samples > look.maxSamples) {
         throw std::invalid_argument("--samples " + std::to_string(samples) + " must be within 1.." +
-                                    std::to_string(look.maxSamples) + " for --look " + look.name +
-                                    " (" + look.samplesMeaning + ")");
+                                    std::to_string(look.maxSamples) + " for the " + look.name +
+                                    " look" + " (" + look.samplesMeaning + ")");
     }
     parseColourField(o.color);
     parseBackend(o.backend);
+    if (!o.exportWater.empty() && look.look != Look::Water) {
+        throw std::invalid_argument(
+            "--export-water writes what the water look traces: it needs --look water");
+    }
 }
 
 // Draws frames of one run to <imagesDir>/frame_NNNNN.png with a fixed camera, in one look.
@@ -115,9 +123,12 @@ class Imager {
     // The particle radius drawn, and the lattice spacing the surface is built at (2 radii).
     void setRadius(double radius) { radius_ = radius; }
     double radius() const { return radius_; }
+    // The next frame's spray, foam and bubbles (whitewater/); null: none.
+    void setWhitewater(const DiffuseParticles* whitewater) { whitewater_ = whitewater; }
 
    protected:
     double radius_ = 0.01;
+    const DiffuseParticles* whitewater_ = nullptr;
 };
 
 // The preview look: an EGL context, the OpenGL renderer; particles, or (surface mode) the
@@ -156,6 +167,7 @@ class FrameImager : public Imager {
             meshSeconds_ += secondsSince(meshStart);
         }
         renderer_.setParticles(particles, field_, radius_);
+        renderer_.setWhitewater(whitewater_ ? *whitewater_ : DiffuseParticles{}, 0.8 * radius_);
         writePng((fs::path(imagesDir_) / imageName(index)).string(),
                  renderer_.renderImage(camera_, width_, height_));
         seconds_ += secondsSince(start);
@@ -190,24 +202,6 @@ class FrameImager : public Imager {
     double seconds_ = 0, meshSeconds_ = 0;
 };
 
-// A floor checker square of about 1/16 of the container's longer side, rounded down to 1, 2 or 5
-// times a power of ten metres.
-double checkerSquareFor(const Box& container) {
-    const double side =
-        std::max(container.max.x - container.min.x, container.max.z - container.min.z) / 16;
-    if (!(side > 0) || !std::isfinite(side)) {
-        return 0.1;
-    }
-    // log10(0.1) may round to just below -1.
-    const double decade = std::pow(10.0, std::floor(std::log10(side) + 1e-9));
-    for (double step : {5.0, 2.0}) {
-        if (step * decade <= side) {
-            return step * decade;
-        }
-    }
-    return decade;
-}
-
 // The water look (raytrace/): the marching-cubes surface of each frame, path traced as water
 // with the container's floor and far walls, the obstacles and the bodies, under a sky; on the
 // CPU or CUDA, with no OpenGL.
@@ -224,7 +218,8 @@ class WaterImager : public Imager {
           samples_(samplesPerPixel(options)),
           backend_(parseBackend(options.backend)),
           surfaceField_(parseSurfaceField(options.surfaceField)),
-          eye_(camera.eye()) {
+          eye_(camera.eye()),
+          exportDir_(options.exportWater) {
         fs::create_directories(imagesDir_);
         // The preview's camera, so that the two looks' images line up.
         camera_.eye = Vec3f(camera.eye());
@@ -233,7 +228,11 @@ class WaterImager : public Imager {
         camera_.up = Vec3f(camera.up());
         camera_.tanHalfFovY = float(std::tan(0.5 * camera.fovY * 3.14159265358979323846 / 180));
         camera_.aspect = float(width_) / float(height_);
-        look_.checkerSize = float(checkerSquareFor(geometry.container));
+        look_.checkerSize = float(checkerSquareOf(geometry.container));
+        if (!exportDir_.empty()) {
+            fs::create_directories(exportDir_);
+            writeSkyHdr((fs::path(exportDir_) / "sky.hdr").string(), look_, 1024);
+        }
     }
     std::string contextDescription() const override {
         return "path traced, " + std::to_string(samples_) + " paths per pixel, on " +
@@ -257,16 +256,27 @@ class WaterImager : public Imager {
         description.obstacleMeshes = obstacleMeshes_;
         description.bodies = geometry_.bodies;
         description.bodyPoses = poses;
+        description.whitewater = whitewater_;
+        description.whitewaterSize = 0.8 * radius_;
         description.cameraEye = eye_;
         // Where the fluid touches the floor and walls its surface lies within about a particle
         // radius of them: a spacing takes those faces and no others.
         description.contactDistance = 2 * radius_;
         const TracingScene scene(description);
         Image image(width_, height_);
-        image.rgb = toneMapToSrgb8(
-            traceWaterImage(backend_, scene, look_, camera_, width_, height_, samples_),
-            look_.exposure);
+        const std::vector<Vec3f> radiance =
+            traceWaterImage(backend_, scene, look_, camera_, width_, height_, samples_);
+        image.rgb = toneMapToSrgb8(radiance, look_.exposure);
         traceSeconds_ += secondsSince(traceStart);
+        if (!exportDir_.empty()) {
+            // What was traced, for another renderer (docs/rendering.md, "Checked against
+            // Blender Cycles").
+            const fs::path stem = fs::path(exportDir_) / fs::path(imageName(index)).stem();
+            writeTracedWaterObj(stem.string() + "_water.obj", scene);
+            writeWaterSceneJson(stem.string() + ".json", scene, look_, camera_, width_, height_,
+                                samples_);
+            writeRadiancePfm(stem.string() + ".pfm", radiance, width_, height_);
+        }
         writePng((fs::path(imagesDir_) / imageName(index)).string(), image);
         seconds_ += secondsSince(start);
         ++images_;
@@ -292,6 +302,7 @@ class WaterImager : public Imager {
     Backend backend_;
     SurfaceField surfaceField_;
     Vec3d eye_;
+    std::string exportDir_;  // --export-water; empty: none
     PinholeCamera camera_;
     WaterLook look_;
     int images_ = 0;
@@ -317,11 +328,18 @@ class RunRenderer : public RunObserver {
         imager_->setColourRange(physicalRange(field, scene.restDensity, report.expectedSpeed,
                                               scene.restDensity * g * report.fluidHeight));
         imager_->setRadius(0.5 * report.spacing);
+        whitewaterDir_ = (fs::path(outDir) / kWhitewaterFolder).string();
         std::cerr << "weir: rendering each frame to " << imagesDir_ << "/ ("
                   << imager_->contextDescription() << ")\n";
     }
     void frame(std::int64_t index, double, const HostParticles& particles) override {
+        // With --whitewater, this frame's file is written by then (main.cpp adds that first).
+        const std::string whitewaterFile = findWhitewaterFile(whitewaterDir_, index);
+        const DiffuseParticles whitewater =
+            whitewaterFile.empty() ? DiffuseParticles{} : readWhitewaterPly(whitewaterFile);
+        imager_->setWhitewater(whitewaterFile.empty() ? nullptr : &whitewater);
         imager_->render(index, particles, particles.bodies);
+        imager_->setWhitewater(nullptr);
     }
     void finish() override {
         if (imager_ && imager_->images() > 0) {
@@ -334,6 +352,7 @@ class RunRenderer : public RunObserver {
     RenderOptions options_;
     std::unique_ptr<FrameImager> imager_;
     std::string imagesDir_;
+    std::string whitewaterDir_;  // <out>/whitewater: `weir run --whitewater` writes there
 };
 
 // The lattice spacing the frames were seeded at: --spacing; else the run's, as frames.json
@@ -450,6 +469,21 @@ int renderCommand(const RenderOptions& options) {
             imager = std::move(preview);
         }
         imager->setRadius(radius);
+        // Spray, foam and bubbles: from --whitewater, else from the run's own folder if it has one.
+        std::string whitewaterDir = options.whitewater;
+        if (!options.noWhitewater && whitewaterDir.empty()) {
+            const fs::path beside = fs::path(options.framesDir) / kWhitewaterFolder;
+            std::error_code error;
+            if (fs::is_directory(beside, error)) {
+                whitewaterDir = beside.string();
+            }
+        } else if (!whitewaterDir.empty() && !fs::is_directory(whitewaterDir)) {
+            throw IoError("--whitewater '" + whitewaterDir +
+                          "' is not a folder (of whitewater_NNNNN.ply files: weir whitewater)");
+        }
+        if (options.noWhitewater) {
+            whitewaterDir.clear();
+        }
         if (!options.quiet) {
             std::cerr << "weir: rendering " << frames.size() << " frame"
                       << (frames.size() == 1 ? "" : "s") << " of " << options.framesDir << " to "
@@ -462,11 +496,19 @@ int renderCommand(const RenderOptions& options) {
                 std::cerr << colourFieldName(field) << " " << rounded(range.lo, 3) << ".."
                           << rounded(range.hi, 3) << " " << colourFieldUnit(field);
             }
+            if (!whitewaterDir.empty()) {
+                std::cerr << ", whitewater from " << whitewaterDir;
+            }
             std::cerr << ", particle spacing " << rounded(2 * radius, 3) << " m, " << sceneFrom
                       << "; " << imager->contextDescription() << ")\n";
         }
         ItemProgress progress("render", frames.size(), options.quiet);
         for (std::size_t i = 0; i < frames.size(); ++i) {
+            const std::string whitewaterFile =
+                whitewaterDir.empty() ? "" : findWhitewaterFile(whitewaterDir, frames[i].index);
+            const DiffuseParticles whitewater =
+                whitewaterFile.empty() ? DiffuseParticles{} : readWhitewaterPly(whitewaterFile);
+            imager->setWhitewater(whitewaterFile.empty() ? nullptr : &whitewater);
             imager->render(frames[i].index, i == 0 ? first : readFrameFile(frames[i].path),
                            frames[i].bodies);
             progress.update(i + 1);

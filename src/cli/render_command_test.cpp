@@ -367,7 +367,7 @@ TEST_F(RenderCli, WaterLookRefusesBadValuesNamingTheOption) {
     EXPECT_TRUE(contains(none.output, "--samples"));
     const RunResult preview = weir("render frames --samples 64");
     EXPECT_EQ(preview.exitCode, 2) << preview.output;
-    EXPECT_TRUE(contains(preview.output, "--samples 64 must be within 1..16 for --look preview"));
+    EXPECT_TRUE(contains(preview.output, "--samples 64 must be within 1..16 for the preview look"));
     const RunResult run = weir("run tiny.json --frames 0 --out again --render --samples 17");
     EXPECT_EQ(run.exitCode, 2) << run.output;
     EXPECT_TRUE(contains(run.output, "--samples 17 must be within 1..16"));

@@ -9,6 +9,7 @@
 #include "io/frame_formats.h"
 #include "io/frame_index.h"
 #include "io/mesh_writer.h"
+#include "whitewater/whitewater_files.h"
 
 namespace weir {
 
@@ -88,13 +89,15 @@ std::size_t removeEarlierRun(const std::string& dir) {
         meshFiles.append(meshFiles.back() == '(' ? "" : "|").append(entry.name);
     }
     removed += removeMatching(root / "mesh", std::regex(meshFiles.append(")")));
+    removed += removeMatching(root / kWhitewaterFolder,
+                              std::regex(R"(whitewater_\d{5,}\.ply|whitewater\.json)"));
     return removed;
 }
 
 void prepareRunFolder(const std::string& dir, bool overwrite, std::ostream& log) {
     std::size_t stale = 0;
-    for (const fs::path& folder :
-         {fs::path(dir), fs::path(dir) / "images", fs::path(dir) / "mesh"}) {
+    for (const fs::path& folder : {fs::path(dir), fs::path(dir) / "images", fs::path(dir) / "mesh",
+                                   fs::path(dir) / kWhitewaterFolder}) {
         stale += removeStaleTemporaries(folder.string()).size();
     }
     if (stale > 0) {

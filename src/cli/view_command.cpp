@@ -19,6 +19,8 @@
 
 #include "cli/render_commands.h"
 #include "cli/video.h"
+#include "raytrace/interactive_water.h"
+#include "render/image_display.h"
 #include "render/particle_interop.h"
 #include "render/png_image.h"
 #include "render/renderer.h"
@@ -47,11 +49,11 @@ std::string fixed(double value, int decimals) {
 // The keys of --press: names as the help lists them.
 int keyCode(const std::string& name) {
     static const std::pair<const char*, int> kKeys[] = {
-        {"space", GLFW_KEY_SPACE}, {"s", GLFW_KEY_S},          {"r", GLFW_KEY_R},
-        {"c", GLFW_KEY_C},         {"m", GLFW_KEY_M},          {"f", GLFW_KEY_F},
-        {"q", GLFW_KEY_Q},         {"left", GLFW_KEY_LEFT},    {"right", GLFW_KEY_RIGHT},
-        {"up", GLFW_KEY_UP},       {"down", GLFW_KEY_DOWN},    {"plus", GLFW_KEY_EQUAL},
-        {"minus", GLFW_KEY_MINUS}, {"escape", GLFW_KEY_ESCAPE}};
+        {"space", GLFW_KEY_SPACE}, {"s", GLFW_KEY_S},           {"r", GLFW_KEY_R},
+        {"c", GLFW_KEY_C},         {"m", GLFW_KEY_M},           {"f", GLFW_KEY_F},
+        {"q", GLFW_KEY_Q},         {"left", GLFW_KEY_LEFT},     {"right", GLFW_KEY_RIGHT},
+        {"up", GLFW_KEY_UP},       {"down", GLFW_KEY_DOWN},     {"plus", GLFW_KEY_EQUAL},
+        {"minus", GLFW_KEY_MINUS}, {"escape", GLFW_KEY_ESCAPE}, {"w", GLFW_KEY_W}};
     for (const auto& [keyName, code] : kKeys) {
         if (name == keyName) {
             return code;
@@ -59,8 +61,8 @@ int keyCode(const std::string& name) {
     }
     throw std::invalid_argument(
         "--press: '" + name +
-        "' is not a key; allowed: space, s, r, c, m, f, q, left, right, up, down, plus, minus, "
-        "escape, or 'none' for a frame without a key");
+        "' is not a key; allowed: space, s, r, c, m, w, f, q, left, right, up, down, plus, "
+        "minus, escape, or 'none' for a frame without a key");
 }
 
 std::vector<int> parseKeys(const std::string& list) {
@@ -133,6 +135,8 @@ class Viewer {
 
     void close() {
         interop_.reset();
+        water_.reset();
+        imageDisplay_.reset();  // with the OpenGL context still current
         renderer_.reset();
         if (window_ != nullptr) {
             glfwDestroyWindow(window_);
@@ -170,7 +174,7 @@ class Viewer {
                   << (interop_ ? interop_->description() : "host copy (" + interopWhy_ + ")")
                   << "\n"
                   << "weir: keys: space pause, s step, r reset, c colour, m particles/surface, "
-                     "f frame, q quit; mouse: left orbit, right pan, wheel zoom\n";
+                     "w water look, f frame, q quit; mouse: left orbit, right pan, wheel zoom\n";
         if (!options_.record.empty()) {
             int w = 0, h = 0;
             glfwGetFramebufferSize(window_, &w, &h);
@@ -251,8 +255,12 @@ class Viewer {
                                         : std::min(secondsSince(lastDraw_), 0.1);
         lastDraw_ = Clock::now();
         const double realTimeSteps = frameSeconds / double(sim_->params().timeStep);
-        const int wanted = int(std::clamp(
-            std::min(0.025 / std::max(perStep, 1e-7), std::max(realTimeSteps, 1.0)), 1.0, 10000.0));
+        // The water look's frame costs its own time on the GPU: the simulation gets what is left
+        // of about 30 ms (at least 3 ms).
+        const double budget = waterLook_ ? std::max(0.003, 0.030 - waterMs_ / 1000) : 0.025;
+        const int wanted =
+            int(std::clamp(std::min(budget / std::max(perStep, 1e-7), std::max(realTimeSteps, 1.0)),
+                           1.0, 10000.0));
         stepsPerDraw_ = std::clamp(wanted, stepsPerDraw_ / 2, stepsPerDraw_ * 2 + 1);
         const StageTimes& times = sim_->stageTimes();
         for (const auto& [stage, samples] : times.samples()) {
@@ -271,9 +279,28 @@ class Viewer {
         upload();
     }
 
-    // The particles (and the surface in surface mode) to the renderer.
+    // The particles (and the surface in surface mode) to the renderer; in the water look, to it
+    // instead (from the GPU where the simulation runs there, else from a host copy).
     void upload() {
         const auto t0 = Clock::now();
+        if (waterLook_) {
+            const ParticleArrays arrays = sim_->particleArrays();
+            if (arrays.onDevice) {
+                water_->setParticles(arrays.pos, arrays.count);
+            } else {
+                sim_->download(host_);
+                water_->setHostParticles(host_);
+            }
+            if (!scene_.bodies.empty()) {
+                std::vector<BodyPose> poses;
+                for (const RigidBody& b : sim_->rigidBodies()) {
+                    poses.push_back(poseOf(b));
+                }
+                water_->setBodyPoses(poses);
+            }
+            uploadMs_ = 1000 * secondsSince(t0);
+            return;
+        }
         if (interop_ && mode_ == RenderMode::Particles) {
             interop_->update(*renderer_, field_, 0.5 * report_.spacing);
             if (!scene_.bodies.empty()) {  // the particles stay on the GPU; the poses come back
@@ -337,7 +364,12 @@ class Viewer {
             line += std::string(stage) + " " + fixed(ms, 2) + "  ";
         }
         line += "step " + fixed(total, 2) + " ms  copy " + fixed(uploadMs_, 1) + " ms";
-        if (mode_ == RenderMode::Surface) {
+        if (waterLook_) {
+            const InteractiveWaterTimes& t = water_->times();
+            line += "  surface " + fixed(t.surfaceMs, 1) + "  bvh " + fixed(t.bvhMs, 1) +
+                    "  trace " + fixed(t.traceMs, 1) + " ms  " +
+                    std::to_string(water_->pathsPerPixel()) + " paths/px";
+        } else if (mode_ == RenderMode::Surface) {
             line += "  surface " + fixed(meshMs_, 0) + " ms";
         }
         return line;
@@ -349,20 +381,95 @@ class Viewer {
         if (w <= 0 || h <= 0) {
             return;  // minimised
         }
+        if (waterLook_) {
+            drawWater(w, h);  // first: its times go into the lines
+        }
         std::vector<std::string> lines = {
             statsLine(), stagesLine(),
-            std::string(colourFieldName(field_)) + "  " + backendName(backend_) + "  " +
-                (mode_ == RenderMode::Surface ? "surface" : "particles")};
+            waterLook_ ? std::string("water look  ") + backendName(backend_) + "  " +
+                             std::to_string(w) + "x" + std::to_string(h) + "  " + waterDisplay_
+                       : std::string(colourFieldName(field_)) + "  " + backendName(backend_) +
+                             "  " + (mode_ == RenderMode::Surface ? "surface" : "particles")};
         if (!status_.empty()) {
             lines.push_back(status_);
         }
         renderer_->setOverlayText(lines);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        renderer_->draw(camera_, w, h);
+        if (waterLook_) {
+            imageDisplay_->draw(w, h);
+            renderer_->drawOverlayOnly(w, h);
+        } else {
+            renderer_->draw(camera_, w, h);
+        }
         if (!options_.screenshot.empty() && options_.maxFrames > 0 &&
             drawn_ + 1 == options_.maxFrames) {
             writePng(options_.screenshot, readWindow(w, h));
         }
+    }
+
+    // The live water look: the camera and window size given, one more frame traced (the paths
+    // accumulate while nothing moves), the image to the window's texture, by interop where the
+    // window's OpenGL runs on the CUDA device, else through the host.
+    void drawWater(int w, int h) {
+        const auto t0 = Clock::now();
+        try {
+            PinholeCamera camera;
+            camera.eye = Vec3f(camera_.eye());
+            camera.forward = Vec3f(camera_.forward());
+            camera.right = Vec3f(camera_.right());
+            camera.up = Vec3f(camera_.up());
+            camera.tanHalfFovY = float(std::tan(0.5 * camera_.fovY * 3.14159265358979323846 / 180));
+            water_->resize(w, h);
+            water_->setCamera(camera);
+            // Paused, the frame's time goes to refining: as many paths per pixel as about 20 ms
+            // of the last frame's trace allows (up to 32).
+            const InteractiveWaterTimes& last = water_->times();
+            const double msPerPath = last.paths > 0 ? last.traceMs / last.paths : 0;
+            water_->setPathsPerFrame(
+                paused_ ? std::clamp(int(20.0 / std::max(msPerPath, 0.5)), 1, 32) : 1);
+            water_->render();
+            std::string why;
+            if (imageDisplay_->setDeviceImage(water_->deviceRgba(), w, h, &why)) {
+                waterDisplay_ = "shown by CUDA-OpenGL interop";
+            } else {
+                imageDisplay_->setHostImage(water_->rgb().data(), w, h);
+                waterDisplay_ = "shown through the host (" + why + ")";
+            }
+        } catch (const std::exception& e) {
+            status_ = std::string("no water look: ") + e.what();
+            std::cerr << "weir: " << status_ << "\n";
+            setWaterLook(false);
+        }
+        waterMs_ = 1000 * secondsSince(t0);
+    }
+
+    // The W key: the live water look on or off. It runs on a CUDA device (the simulation's, or
+    // any where the simulation runs on the CPU); without one the status line says so.
+    void setWaterLook(bool on) {
+        if (on && !water_) {
+            std::string why;
+            if (!interactiveWaterAvailable(&why)) {
+                status_ = "the water look needs a CUDA GPU: " + why;
+                std::cerr << "weir: " << status_ << "\n";
+                return;
+            }
+            int w = 0, h = 0;
+            glfwGetFramebufferSize(window_, &w, &h);
+            try {
+                water_ = std::make_unique<InteractiveWater>(interactiveWaterSetupOf(
+                    scene_, report_.spacing, std::max(w, 16), std::max(h, 16), 1));
+                imageDisplay_ = std::make_unique<ImageDisplay>();
+            } catch (const std::exception& e) {
+                status_ = std::string("no water look: ") + e.what();
+                std::cerr << "weir: " << status_ << "\n";
+                water_.reset();
+                return;
+            }
+            std::cerr << "weir: water look on: surface, hierarchy and paths on the GPU\n";
+        }
+        waterLook_ = on;
+        renderer_->setShowLegend(!on);
+        upload();
     }
 
     // With --record: the frame just drawn to the video, at the size the recording started with
@@ -434,6 +541,9 @@ class Viewer {
                 renderer_->setMode(mode_);
                 upload();
                 break;
+            case GLFW_KEY_W:
+                setWaterLook(!waterLook_);
+                break;
             case GLFW_KEY_F:
                 frameCamera();
                 break;
@@ -503,8 +613,13 @@ class Viewer {
     std::unique_ptr<Renderer> renderer_;
     std::unique_ptr<Simulation> sim_;
     std::unique_ptr<ParticleInterop> interop_;  // null: particles copied through the host
-    std::unique_ptr<VideoRecorder> recorder_;   // --record
-    std::string interopWhy_;                    // why there is no interop
+    std::unique_ptr<InteractiveWater> water_;   // the live water look, made by its first W
+    std::unique_ptr<ImageDisplay> imageDisplay_;
+    bool waterLook_ = false;
+    double waterMs_ = 0;                       // the last water frame: trace, display and the rest
+    std::string waterDisplay_;                 // how its image reaches the window
+    std::unique_ptr<VideoRecorder> recorder_;  // --record
+    std::string interopWhy_;                   // why there is no interop
     SetupReport report_;
     HostParticles host_;
     OrbitCamera camera_;

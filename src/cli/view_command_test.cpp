@@ -72,6 +72,35 @@ TEST_F(ViewCli, DrawsFramesTakesKeysAndQuitsUnderXvfb) {
     EXPECT_GT(text, 100u) << "no overlay text at the top left";
 }
 
+TEST_F(ViewCli, WaterLookKeyTracesOnAGpuOrSaysItNeedsOne) {
+    if (!onPath("xvfb-run")) {
+        GTEST_SKIP() << "xvfb-run is not installed (Debian: apt-get install xvfb xauth)";
+    }
+    writeFile("tiny.json", kTinyDrawScene);
+    // On for three frames (the paths accumulate while paused), off, on again to the end.
+    const RunResult view = viewUnderXvfb(
+        "tiny.json --backend cpu --width 160 --height 100 --max-frames 8 "
+        "--press none,w,space,none,w,w,none,none --screenshot water.png");
+    ASSERT_EQ(view.exitCode, 0) << view.output;
+    EXPECT_TRUE(contains(view.output, "view closed after 8 frames"));
+    if (contains(view.output, "the water look needs a CUDA GPU")) {
+        return;  // no GPU here: the status line says so, the viewer goes on
+    }
+    EXPECT_TRUE(contains(view.output, "water look on")) << view.output;
+    EXPECT_FALSE(contains(view.output, "no water look")) << view.output;
+    EXPECT_TRUE(contains(view.output, "paths/px")) << view.output;  // the closing stages line
+    const Image shot = readPng(path("water.png"));
+    ASSERT_EQ(shot.width, 160);
+    std::size_t coloured = 0;
+    for (int y = 50; y < 100; ++y) {
+        for (int x = 0; x < 160; ++x) {
+            const std::uint8_t* p = shot.pixel(x, y);
+            coloured += std::abs(p[0] - int(std::lround(kBackground.r * 255))) > 8;
+        }
+    }
+    EXPECT_GT(coloured, 1000u) << "the traced image (floor, sky, water) is not in the window";
+}
+
 TEST_F(ViewCli, WithoutADisplayItSaysSo) {
     writeFile("tiny.json", kTinyDrawScene);
     const RunResult view = shell("env -u DISPLAY -u WAYLAND_DISPLAY " + quoted(WEIR_BINARY) +

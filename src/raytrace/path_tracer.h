@@ -123,7 +123,9 @@ WEIR_HD inline SurfaceHit nearestSurface(const TracingSceneView& s, const WaterL
         hit.type = SurfaceType::Water;
     } else {
         hit.type = SurfaceType::Matte;
-        hit.albedo = shade.kind == TriangleKind::Body ? look.bodyAlbedo : look.obstacleAlbedo;
+        hit.albedo = shade.kind == TriangleKind::Body         ? look.bodyAlbedo
+                     : shade.kind == TriangleKind::Whitewater ? look.whitewaterAlbedo
+                                                              : look.obstacleAlbedo;
         if (dot(n, ray.direction) > 0.0f) {
             n = -n;
             smooth = -smooth;
@@ -254,14 +256,15 @@ WEIR_HD inline Vec3f traceRadiance(const TracingSceneView& s, const WaterLook& l
     return radiance;
 }
 
-// A pixel's mean radiance over `samples` paths, each through a random point of the pixel.
+// A pixel's mean radiance over `samples` paths, each through a random point of the pixel: the
+// paths numbered firstSample on (the live look adds a few each frame to those traced before).
 WEIR_HD inline Vec3f tracePixel(const TracingSceneView& s, const WaterLook& look,
                                 const PinholeCamera& camera, int width, int height, int x, int y,
-                                int samples) {
+                                int samples, int firstSample = 0) {
     Vec3f sum;
     const auto pixel = std::uint32_t(y) * std::uint32_t(width) + std::uint32_t(x);
     for (int k = 0; k < samples; ++k) {
-        SampleStream random(pixel, std::uint32_t(k));
+        SampleStream random(pixel, std::uint32_t(firstSample + k));
         const float px = float(x) + random.next();
         const float py = float(y) + random.next();
         sum += traceRadiance(s, look, cameraRay(camera, width, height, px, py), false, random);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raytrace/surface_triangles.h"
 #include "scene/shape_tessellation.h"
 
 namespace weir {
@@ -84,34 +85,26 @@ void addMesh(TriangleSoup& soup, const MeshObstacle& mesh, const Vec3d& shift, T
     }
 }
 
-// Whether a face of the fluid's surface lies on the plane (within `distance`) and faces it.
-bool liesOnPlane(const Vec3f corners[3], const Vec3f& faceNormal, int axis, double position,
-                 double outward, double distance) {
-    if (double(faceNormal[axis]) * outward < 0.5) {
-        return false;
-    }
-    for (int c = 0; c < 3; ++c) {
-        if (std::abs(double(corners[c][axis]) - position) > distance) {
-            return false;
+}  // namespace
+
+std::uint32_t wallsSeenFrom(const Box& container, const Vec3d& eye) {
+    std::uint32_t walls = 0;
+    for (int axis : {0, 2}) {
+        if (eye[axis] > container.min[axis]) {
+            walls |= wallBit(axis, 0);
+        }
+        if (eye[axis] < container.max[axis]) {
+            walls |= wallBit(axis, 1);
         }
     }
-    return true;
+    return walls;
 }
-
-}  // namespace
 
 TracingScene::TracingScene(const TracingSceneDescription& d) {
     const Box& box = d.container;
     view_.containerLo = Vec3f(box.min);
     view_.containerHi = Vec3f(box.max);
-    for (int axis : {0, 2}) {
-        if (d.cameraEye[axis] > box.min[axis]) {
-            view_.walls |= wallBit(axis, 0);
-        }
-        if (d.cameraEye[axis] < box.max[axis]) {
-            view_.walls |= wallBit(axis, 1);
-        }
-    }
+    view_.walls = wallsSeenFrom(box, d.cameraEye);
     const double size = length(box.max - box.min);
     view_.rayEpsilon = float(std::max(1e-6, 2e-5 * size));
 
@@ -134,13 +127,14 @@ TracingScene::TracingScene(const TracingSceneDescription& d) {
             const Vec3f faceNormal = face / area;
             bool onContainer = false;
             if (d.contactDistance > 0) {
-                onContainer = liesOnPlane(corners, faceNormal, 1, box.min.y, -1, d.contactDistance);
+                onContainer =
+                    faceLiesOnPlane(corners, faceNormal, 1, box.min.y, -1, d.contactDistance);
                 for (int axis : {0, 2}) {
                     for (int side = 0; side < 2 && !onContainer; ++side) {
                         onContainer = (view_.walls & wallBit(axis, side)) != 0 &&
-                                      liesOnPlane(corners, faceNormal, axis,
-                                                  side ? box.max[axis] : box.min[axis],
-                                                  side ? 1 : -1, d.contactDistance);
+                                      faceLiesOnPlane(corners, faceNormal, axis,
+                                                      side ? box.max[axis] : box.min[axis],
+                                                      side ? 1 : -1, d.contactDistance);
                     }
                 }
             }
@@ -187,6 +181,33 @@ TracingScene::TracingScene(const TracingSceneDescription& d) {
         } else {
             const Vec3d half = (body.box.max - body.box.min) * 0.5;
             addBox(soup, {half * -1.0, half}, TriangleKind::Body, place, turn);
+        }
+    }
+
+    // Spray, foam and bubbles: octahedra, cheap and without a facing direction. Foam is drawn
+    // largest, so that it pokes through the surface it floats on (the surface lies about half a
+    // spacing outside the outermost particles' centres).
+    if (d.whitewater != nullptr && d.whitewaterSize > 0) {
+        const DiffuseParticles& w = *d.whitewater;
+        const Vec3d axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+        for (std::size_t k = 0; k < w.size(); ++k) {
+            const double scale = w.kindOf(k) == DiffuseKind::Foam    ? 1.0
+                                 : w.kindOf(k) == DiffuseKind::Spray ? 0.7
+                                                                     : 0.5;
+            const double r = d.whitewaterSize * scale;
+            const Vec3d c(w.x[k], w.y[k], w.z[k]);
+            for (int octant = 0; octant < 8; ++octant) {
+                const Vec3d a = axes[0] * ((octant & 1) ? r : -r);
+                const Vec3d b = axes[1] * ((octant & 2) ? r : -r);
+                const Vec3d e = axes[2] * ((octant & 4) ? r : -r);
+                // Wound counter-clockwise seen from outside in every octant.
+                const bool flip = ((octant & 1) != 0) ^ ((octant & 2) != 0) ^ ((octant & 4) != 0);
+                if (flip) {
+                    soup.addFlat(c + a, c + b, c + e, TriangleKind::Whitewater);
+                } else {
+                    soup.addFlat(c + a, c + e, c + b, TriangleKind::Whitewater);
+                }
+            }
         }
     }
 

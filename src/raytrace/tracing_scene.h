@@ -11,10 +11,12 @@
 #include "scene/scene.h"
 #include "solver/particles.h"
 #include "surface/triangle_mesh.h"
+#include "whitewater/diffuse_particles.h"
 
 namespace weir {
 
-enum class TriangleKind : std::uint32_t { Water = 0, Obstacle = 1, Body = 2 };
+// Whitewater: the spray, foam and bubbles of whitewater/, a small matte octahedron each.
+enum class TriangleKind : std::uint32_t { Water = 0, Obstacle = 1, Body = 2, Whitewater = 3 };
 
 // A triangle's vertex normals (unit; for matte flat triangles all three the face's) and kind.
 struct TriangleShading {
@@ -25,6 +27,10 @@ struct TriangleShading {
 // Bits of TracingSceneView::walls: the container's side walls (x and z, low and high). The floor
 // is always there, the top never.
 constexpr std::uint32_t wallBit(int axis, int side) { return 1U << (2 * axis + side); }
+
+// The side walls the camera sees from inside (TracingSceneView::walls): those whose outside
+// faces away from the eye; the others are cut away.
+std::uint32_t wallsSeenFrom(const Box& container, const Vec3d& eye);
 
 // The scene in the memory of the backend that traces it: plain pointers, passed by value.
 struct TracingSceneView {
@@ -50,6 +56,10 @@ struct TracingSceneDescription {
     // is there, and face it, are where the fluid touches the container: left out, so that the
     // water meets the floor and walls directly instead of through a film of air. 0: none left out.
     double contactDistance = 0;
+    // This frame's spray, foam and bubbles (null: none), drawn as octahedra reaching
+    // whitewaterSize (foam), 0.7x it (spray) and 0.5x it (bubbles) from their centres [m].
+    const DiffuseParticles* whitewater = nullptr;
+    double whitewaterSize = 0;
 };
 
 class TracingScene {

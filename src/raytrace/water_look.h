@@ -40,6 +40,8 @@ struct WaterLook {
     Vec3f wallAlbedo{0.50f, 0.56f, 0.60f};
     Vec3f obstacleAlbedo{0.58f, 0.56f, 0.52f};
     Vec3f bodyAlbedo{0.72f, 0.48f, 0.26f};
+    // Spray, foam and bubbles (whitewater/): near-white, as the air-water froth scatters light.
+    Vec3f whitewaterAlbedo{0.88f, 0.90f, 0.92f};
 
     // A path ends after this many reflections or refractions at the water, or after this many
     // bounces off matte surfaces (each of which also samples the sun).

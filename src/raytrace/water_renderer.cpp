@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "raytrace/tone_map.h"
+
 namespace weir {
 
 #if defined(WEIR_HAS_CUDA)
@@ -43,12 +45,7 @@ std::vector<Vec3f> traceWaterImage(Backend backend, const TracingScene& scene,
 }
 
 std::uint8_t toneMappedByte(float radiance, float exposure) {
-    const float x = std::max(0.0f, radiance * exposure);
-    const float filmic =
-        std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
-    const float encoded =
-        filmic <= 0.0031308f ? 12.92f * filmic : 1.055f * std::pow(filmic, 1.0f / 2.4f) - 0.055f;
-    return std::uint8_t(std::lround(std::clamp(encoded, 0.0f, 1.0f) * 255.0f));
+    return toneMapToByte(radiance, exposure);  // tone_map.h: the live look's kernel runs it too
 }
 
 std::vector<std::uint8_t> toneMapToSrgb8(const std::vector<Vec3f>& radiance, float exposure) {

@@ -63,6 +63,8 @@ in float mapT;
 uniform mat4 projection;
 uniform float radius;
 uniform sampler1D colourMap;
+uniform float useFixedColour;  // 1: fixedColour, not the map (whitewater's white sprites)
+uniform vec3 fixedColour;
 out vec4 colour;
 void main() {
     vec2 p = gl_PointCoord * 2.0 - 1.0;
@@ -74,7 +76,8 @@ void main() {
     vec3 n = vec3(p, sqrt(1.0 - r2));
     vec4 clip = projection * vec4(centreView + n * radius, 1.0);
     gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;
-    vec3 base = texture(colourMap, (0.5 + mapT * 255.0) / 256.0).rgb;
+    vec3 base = useFixedColour > 0.5 ? fixedColour
+                                     : texture(colourMap, (0.5 + mapT * 255.0) / 256.0).rgb;
     colour = vec4(shade(base, n), 1.0);
 }
 )";
@@ -177,6 +180,8 @@ const Rgb kLineColour{0.72f, 0.74f, 0.78f};
 const Rgb kObstacleColour{0.58f, 0.56f, 0.52f};
 const Rgb kBodyColour{0.72f, 0.48f, 0.26f};  // rigid bodies: wood
 const Rgb kTextColour{0.93f, 0.93f, 0.93f};
+// Spray, foam and bubbles (whitewater/).
+const Rgb kWhitewaterColour{0.92f, 0.94f, 0.96f};
 
 GLuint compileShader(GLenum type, const std::string& source, const char* name) {
     const GLuint shader = glCreateShader(type);
@@ -401,6 +406,7 @@ struct Renderer::Gpu {
     GLuint particleProgram = 0, solidProgram = 0, waterProgram = 0, lineProgram = 0,
            overlayProgram = 0;
     GLuint particleVao = 0, particleBuffers[2] = {0, 0};
+    GLuint whitewaterVao = 0, whitewaterBuffers[2] = {0, 0};  // same layout as the particles'
     Mesh solids, bodies, lines, water, overlay;
     GLuint colourMap = 0;
     float maxPointSize = 64;
@@ -477,6 +483,15 @@ Renderer::Renderer() : gpu_(std::make_unique<Gpu>()) {
     glBindBuffer(GL_ARRAY_BUFFER, g.particleBuffers[1]);
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glGenVertexArrays(1, &g.whitewaterVao);
+    glGenBuffers(2, g.whitewaterBuffers);
+    glBindVertexArray(g.whitewaterVao);
+    glBindBuffer(GL_ARRAY_BUFFER, g.whitewaterBuffers[0]);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glBindBuffer(GL_ARRAY_BUFFER, g.whitewaterBuffers[1]);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
     glBindVertexArray(0);
     g.solids.create({3, 3});
     g.bodies.create({3, 3});
@@ -511,6 +526,8 @@ Renderer::~Renderer() {
     }
     glDeleteBuffers(2, g.particleBuffers);
     glDeleteVertexArrays(1, &g.particleVao);
+    glDeleteBuffers(2, g.whitewaterBuffers);
+    glDeleteVertexArrays(1, &g.whitewaterVao);
     for (Mesh* mesh : {&g.solids, &g.bodies, &g.lines, &g.water, &g.overlay}) {
         mesh->destroy();
     }
@@ -568,6 +585,31 @@ void Renderer::setParticles(const HostParticles& particles, ColourField field, d
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(values.size() * sizeof(float)), values.data(),
                  GL_STREAM_DRAW);
     checkGl("particle upload");
+}
+
+void Renderer::setWhitewater(const DiffuseParticles& whitewater, double radius) {
+    // Grouped by kind, so that each kind is one draw at its own size.
+    std::vector<float> positions;
+    positions.reserve(3 * whitewater.size());
+    for (int kind = 0; kind < kDiffuseKinds; ++kind) {
+        whitewaterCounts_[kind] = 0;
+        for (std::size_t k = 0; k < whitewater.size(); ++k) {
+            if (whitewater.kind[k] == kind) {
+                positions.insert(positions.end(),
+                                 {whitewater.x[k], whitewater.y[k], whitewater.z[k]});
+                ++whitewaterCounts_[kind];
+            }
+        }
+    }
+    const std::vector<float> values(whitewater.size(), 0.0f);
+    whitewaterRadius_ = radius;
+    glBindBuffer(GL_ARRAY_BUFFER, gpu_->whitewaterBuffers[0]);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(positions.size() * sizeof(float)), positions.data(),
+                 GL_STREAM_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, gpu_->whitewaterBuffers[1]);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(values.size() * sizeof(float)), values.data(),
+                 GL_STREAM_DRAW);
+    checkGl("whitewater upload");
 }
 
 std::pair<unsigned, unsigned> Renderer::reserveParticleBuffers(std::size_t n) {
@@ -700,10 +742,42 @@ void Renderer::draw(const OrbitCamera& camera, int width, int height) {
         glBindVertexArray(g.particleVao);
         glDrawArrays(GL_POINTS, 0, GLsizei(particleCount_));
     }
+    // Spray, foam and bubbles: white sprites over the particles or the surface, foam largest
+    // (the sizes of the water look's octahedra).
+    if (whitewaterCounts_[0] + whitewaterCounts_[1] + whitewaterCounts_[2] > 0) {
+        glEnable(GL_PROGRAM_POINT_SIZE);
+        glUseProgram(g.particleProgram);
+        setMatrix(g.particleProgram, "view", view);
+        setMatrix(g.particleProgram, "projection", projection);
+        glUniform1f(glGetUniformLocation(g.particleProgram, "pixelScale"),
+                    0.5f * float(height) * projection.at(1, 1));
+        glUniform1f(glGetUniformLocation(g.particleProgram, "maxPointSize"), g.maxPointSize);
+        glUniform1f(glGetUniformLocation(g.particleProgram, "useFixedColour"), 1.0f);
+        setVec3(g.particleProgram, "fixedColour", kWhitewaterColour);
+        setLighting(g.particleProgram, lighting);
+        glBindVertexArray(g.whitewaterVao);
+        const float sizes[kDiffuseKinds] = {0.7f, 1.0f, 0.5f};  // spray, foam, bubbles
+        GLint first = 0;
+        for (int kind = 0; kind < kDiffuseKinds; ++kind) {
+            glUniform1f(glGetUniformLocation(g.particleProgram, "radius"),
+                        float(whitewaterRadius_) * sizes[kind]);
+            glDrawArrays(GL_POINTS, first, GLsizei(whitewaterCounts_[kind]));
+            first += GLint(whitewaterCounts_[kind]);
+        }
+        glUniform1f(glGetUniformLocation(g.particleProgram, "useFixedColour"), 0.0f);
+    }
     drawOverlay(width, height);
     glBindVertexArray(0);
     glUseProgram(0);
     checkGl("draw");
+}
+
+void Renderer::drawOverlayOnly(int width, int height) {
+    glViewport(0, 0, width, height);
+    drawOverlay(width, height);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    checkGl("overlay");
 }
 
 void Renderer::drawOverlay(int width, int height) {

@@ -14,6 +14,7 @@
 #include "scene/scene.h"
 #include "solver/particles.h"
 #include "surface/triangle_mesh.h"
+#include "whitewater/diffuse_particles.h"
 
 namespace weir {
 
@@ -74,6 +75,9 @@ class Renderer {
     const ValueRange& colourRange() const { return range_; }
     ColourField colourField() const { return field_; }
     void setMesh(const TriangleMesh& mesh);
+    // Spray, foam and bubbles (whitewater/), drawn as white sprites in both modes: foam of this
+    // radius [m], spray 0.7x and bubbles 0.5x it. An empty set draws none.
+    void setWhitewater(const DiffuseParticles& whitewater, double radius);
     void setMode(RenderMode mode) { mode_ = mode; }
     RenderMode mode() const { return mode_; }
     // Lines of text at the top left (empty: none).
@@ -84,6 +88,9 @@ class Renderer {
 
     // Draws into the bound framebuffer, whose size is width x height.
     void draw(const OrbitCamera& camera, int width, int height);
+    // Only the text lines (and the legend, where shown) over what the bound framebuffer holds:
+    // over an image drawn by another path (the live water look).
+    void drawOverlayOnly(int width, int height);
     // Draws into the offscreen framebuffer and waits for the GPU to finish, without reading the
     // image back: the cost of a frame's drawing alone.
     void drawOffscreenAndWait(const OrbitCamera& camera, int width, int height);
@@ -106,6 +113,8 @@ class Renderer {
     std::vector<std::string> overlay_;
     bool showLegend_ = true;
     int samples_ = 4;
+    std::size_t whitewaterCounts_[kDiffuseKinds] = {0, 0, 0};  // by kind, uploaded in that order
+    double whitewaterRadius_ = 0;
     std::size_t reserved_ = 0;  // particles the buffers hold room for (reserveParticleBuffers)
 };
 

@@ -103,7 +103,10 @@ double estimateParticleSpacing(const HostParticles& particles) {
     return nearest[nearest.size() / 2];
 }
 
-SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& options) {
+namespace {
+
+// The options' checks, shared by both ways of planning.
+void validateSurfaceOptions(const SurfaceOptions& options) {
     requireNonNegative(options.spacing, "spacing", "an estimate from the particles");
     requireNonNegative(options.cellSize, "cell size", "half the particle spacing");
     if (!(options.snapFraction >= 0 && options.snapFraction <= 0.25)) {
@@ -118,6 +121,15 @@ SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& op
         throw std::invalid_argument("sample limit is " + text(double(options.maxSamples)) +
                                     ", must be at least 8 (or 0 for half the free memory)");
     }
+}
+
+SurfacePlan planForBounds(const Vec3d& low, const Vec3d& high, double spacing,
+                          bool spacingEstimated, const SurfaceOptions& options);
+
+}  // namespace
+
+SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& options) {
+    validateSurfaceOptions(options);
     const std::size_t n = particles.size();
     if (n == 0) {
         throw SurfaceError("there are no particles to build a surface from");
@@ -145,19 +157,44 @@ SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& op
                            text(particles.x[i]) + " " + text(particles.y[i]) + " " +
                            text(particles.z[i]) + ", every coordinate must be finite");
     }
-    SurfacePlan plan;
-    plan.particleMin = Vec3d(low[0], low[1], low[2]);
-    plan.particleMax = Vec3d(high[0], high[1], high[2]);
-
-    plan.spacing = options.spacing;
-    if (plan.spacing == 0) {
-        plan.spacing = estimateParticleSpacing(particles);
-        plan.spacingEstimated = true;
-        if (!(plan.spacing > 0)) {
+    double spacing = options.spacing;
+    if (spacing == 0) {
+        spacing = estimateParticleSpacing(particles);
+        if (!(spacing > 0)) {
             throw SurfaceError("cannot estimate the particle spacing from " + std::to_string(n) +
                                " particle(s) at one point; give the spacing");
         }
     }
+    return planForBounds(Vec3d(low[0], low[1], low[2]), Vec3d(high[0], high[1], high[2]), spacing,
+                         options.spacing == 0, options);
+}
+
+SurfacePlan planSurfaceForBounds(const Vec3d& low, const Vec3d& high,
+                                 const SurfaceOptions& options) {
+    validateSurfaceOptions(options);
+    if (!(options.spacing > 0)) {
+        throw std::invalid_argument("spacing is " + text(options.spacing) +
+                                    ", must be given (> 0) to plan a surface from bounds alone");
+    }
+    for (int a = 0; a < 3; ++a) {
+        if (!std::isfinite(low[a]) || !std::isfinite(high[a]) || !(low[a] <= high[a])) {
+            throw SurfaceError("the particles' bounds are " + text(low.x) + " " + text(low.y) +
+                               " " + text(low.z) + " to " + text(high.x) + " " + text(high.y) +
+                               " " + text(high.z) + ": every coordinate must be finite");
+        }
+    }
+    return planForBounds(low, high, options.spacing, false, options);
+}
+
+namespace {
+
+SurfacePlan planForBounds(const Vec3d& low, const Vec3d& high, double spacing,
+                          bool spacingEstimated, const SurfaceOptions& options) {
+    SurfacePlan plan;
+    plan.particleMin = low;
+    plan.particleMax = high;
+    plan.spacing = spacing;
+    plan.spacingEstimated = spacingEstimated;
     const double ratio = options.kernelRadiusRatio;
     plan.kernelRadius = ratio * plan.spacing;
     plan.particleRadius = zhuBridsonParticleRadius(ratio) * plan.spacing;
@@ -222,6 +259,8 @@ SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& op
     }
     return plan;
 }
+
+}  // namespace
 
 std::string surfaceTooLargeMessage(const SurfacePlan& plan, std::int64_t samples,
                                    std::int64_t limit, bool limitGiven, const char* memoryName) {

@@ -96,6 +96,10 @@ struct SurfacePlan {
 // Validates the options (std::invalid_argument naming the option, its value and what is allowed)
 // and the particles (SurfaceError), and sizes the field lattice.
 SurfacePlan planSurface(const HostParticles& particles, const SurfaceOptions& options);
+// The same plan from the particles' bounds alone (particles that stay on the GPU: their bounds
+// reduced there); options.spacing must be given.
+SurfacePlan planSurfaceForBounds(const Vec3d& low, const Vec3d& high,
+                                 const SurfaceOptions& options);
 
 // The median distance of (up to a few thousand sampled) particles to their nearest neighbour:
 // the lattice spacing for a seeded frame, a little less for a compressed fluid. 0 if no particle

@@ -7,6 +7,11 @@ namespace weir {
 
 template TriangleMesh extractSurface<CudaExec>(CudaExec&, const HostParticles&, const SurfacePlan&,
                                                const char*, StageTimes*);
+// The live water look's path (raytrace/interactive_water.cu): particles on the GPU to a mesh
+// kept there.
+template std::int64_t extractSurfaceInto<CudaExec>(CudaExec&, const Real4*, Index,
+                                                   const SurfacePlan&, const char*,
+                                                   BackendMesh<CudaExec>&, StageTimes*);
 
 TriangleMesh reconstructSurfaceCuda(const HostParticles& particles, const SurfacePlan& plan,
                                     StageTimes* stages) {

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <future>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/stage_timer.h"
@@ -26,16 +27,44 @@ namespace weir {
 template <class Exec, class T>
 using ExecBuffer = typename Exec::template Buffer<T>;
 
+// The sparse lattice's working arrays: block flags and their numbering, the field's samples, the
+// per-slot prefix sums of vertices and triangles.
+template <class Exec>
+struct SurfaceScratch {
+    ExecBuffer<Exec, std::int32_t> flags, blockEnd, blockSlot, keptBlock;
+    ExecBuffer<Exec, float> values;
+    ExecBuffer<Exec, std::int64_t> vertexEnd, triangleEnd;
+};
+
+// A mesh left in the backend's memory (the GPU's for CudaExec): what marching cubes writes, the
+// counts on the host, and the working arrays that made it. Buffers only grow, so a mesh rebuilt
+// every frame (the live water look) allocates only when the fluid's surface grows.
+template <class Exec>
+struct BackendMesh {
+    ExecBuffer<Exec, Vec3f> positions, normals;  // vertexCount each
+    ExecBuffer<Exec, std::uint32_t> indices;     // 3 * triangleCount
+    std::int64_t vertexCount = 0, triangleCount = 0;
+    SurfaceScratch<Exec> scratch;
+};
+
+// Told each count as soon as marching cubes knows it (the host path allocates its arrays on
+// other threads meanwhile); this one does nothing.
+struct IgnoreMeshCounts {
+    void vertices(std::int64_t) {}
+    void triangles(std::int64_t) {}
+};
+
 // Marching cubes over a field already sampled on the backend (a SampledFieldView or a
 // SparseFieldView whose arrays live there): each slot's cut edges, a prefix sum that numbers
 // their vertices, each cell's triangle count from its case, a prefix sum, the triangles. A cell
 // belongs to the slot of its lowest corner. Counts are 64-bit: a lattice of up to 2^31 samples
-// has up to 3 * 2^31 cut edges.
-template <class Exec, class Lattice>
-TriangleMesh marchingCubes(Exec& exec, const Lattice& lattice) {
+// has up to 3 * 2^31 cut edges. The mesh stays in the backend's memory, in `out`.
+template <class Exec, class Lattice, class Counts>
+void marchingCubesInto(Exec& exec, const Lattice& lattice, BackendMesh<Exec>& out, Counts& counts) {
     const Index slots = Index(lattice.slotCount());
     exec.stageBegin("surface vertices");
-    ExecBuffer<Exec, std::int64_t> vertexEnd(static_cast<std::size_t>(slots));
+    ExecBuffer<Exec, std::int64_t>& vertexEnd = out.scratch.vertexEnd;
+    vertexEnd.resize(static_cast<std::size_t>(slots));
     {
         std::int64_t* end = vertexEnd.data();
         exec.forEach(slots, [=] WEIR_HD(Index i) {
@@ -51,17 +80,12 @@ TriangleMesh marchingCubes(Exec& exec, const Lattice& lattice) {
                            " vertices, more than a mesh's 32-bit indices allow (" +
                            std::to_string(kMaxSurfaceVertices) + "); use a larger cell size");
     }
-    // The host's mesh arrays are allocated and zeroed on threads of their own while the device
-    // works (at 1e8 particles that is 650 MB, a quarter of a second on one core).
-    TriangleMesh mesh;
-    std::future<void> positionsReady = std::async(std::launch::async, [&mesh, vertexCount] {
-        mesh.positions.resize(static_cast<std::size_t>(vertexCount));
-    });
-    std::future<void> normalsReady = std::async(std::launch::async, [&mesh, vertexCount] {
-        mesh.normals.resize(static_cast<std::size_t>(vertexCount));
-    });
-    ExecBuffer<Exec, Vec3f> positions(static_cast<std::size_t>(vertexCount)),
-        normals(static_cast<std::size_t>(vertexCount));
+    counts.vertices(vertexCount);
+    out.vertexCount = vertexCount;
+    out.positions.resize(static_cast<std::size_t>(vertexCount));
+    out.normals.resize(static_cast<std::size_t>(vertexCount));
+    ExecBuffer<Exec, Vec3f>& positions = out.positions;
+    ExecBuffer<Exec, Vec3f>& normals = out.normals;
     {
         const std::int64_t* end = vertexEnd.data();
         Vec3f* positionOut = positions.data();
@@ -89,7 +113,8 @@ TriangleMesh marchingCubes(Exec& exec, const Lattice& lattice) {
     exec.upload(tableEdges, kMarchingCubesTable.triangleEdges[0].data(),
                 256 * 3 * kMaxTrianglesPerCube);
     const MarchingCubesTableView table{tableCounts.data(), tableEdges.data()};
-    ExecBuffer<Exec, std::int64_t> triangleEnd(static_cast<std::size_t>(slots));
+    ExecBuffer<Exec, std::int64_t>& triangleEnd = out.scratch.triangleEnd;
+    triangleEnd.resize(static_cast<std::size_t>(slots));
     {
         std::int64_t* end = triangleEnd.data();
         exec.forEach(slots, [=] WEIR_HD(Index i) {
@@ -101,10 +126,10 @@ TriangleMesh marchingCubes(Exec& exec, const Lattice& lattice) {
         exec.inclusiveScan(end, end, slots);
     }
     const std::int64_t triangleCount = exec.readOne(triangleEnd, std::size_t(slots - 1));
-    std::future<void> indicesReady = std::async(std::launch::async, [&mesh, triangleCount] {
-        mesh.indices.resize(3 * static_cast<std::size_t>(triangleCount));
-    });
-    ExecBuffer<Exec, std::uint32_t> indices(3 * static_cast<std::size_t>(triangleCount));
+    counts.triangles(triangleCount);
+    out.triangleCount = triangleCount;
+    out.indices.resize(3 * static_cast<std::size_t>(triangleCount));
+    ExecBuffer<Exec, std::uint32_t>& indices = out.indices;
     {
         const std::int64_t* end = triangleEnd.data();
         const std::int64_t* verticesEnd = vertexEnd.data();
@@ -121,17 +146,75 @@ TriangleMesh marchingCubes(Exec& exec, const Lattice& lattice) {
         });
     }
     exec.stageEnd("surface triangles");
+}
+
+// The host's mesh arrays, allocated and zeroed on threads of their own while the device works
+// (at 1e8 particles that is 650 MB, a quarter of a second on one core).
+struct HostMeshAllocation {
+    TriangleMesh* mesh;
+    std::future<void> positionsReady, normalsReady, indicesReady;
+
+    void vertices(std::int64_t count) {
+        TriangleMesh* m = mesh;
+        positionsReady = std::async(std::launch::async, [m, count] {
+            m->positions.resize(static_cast<std::size_t>(count));
+        });
+        normalsReady = std::async(
+            std::launch::async, [m, count] { m->normals.resize(static_cast<std::size_t>(count)); });
+    }
+    void triangles(std::int64_t count) {
+        TriangleMesh* m = mesh;
+        indicesReady = std::async(std::launch::async, [m, count] {
+            m->indices.resize(3 * static_cast<std::size_t>(count));
+        });
+    }
+};
+
+// Marching cubes (marchingCubesInto), the mesh then downloaded to the host.
+template <class Exec, class Lattice>
+TriangleMesh marchingCubes(Exec& exec, const Lattice& lattice) {
+    TriangleMesh mesh;
+    HostMeshAllocation allocation{&mesh, {}, {}, {}};
+    BackendMesh<Exec> out;
+    marchingCubesInto(exec, lattice, out, allocation);
 
     exec.stageBegin("surface download");
-    positionsReady.get();
-    normalsReady.get();
-    indicesReady.get();
-    exec.download(positions, mesh.positions.data(), mesh.positions.size());
-    exec.download(normals, mesh.normals.data(), mesh.normals.size());
-    exec.download(indices, mesh.indices.data(), mesh.indices.size());
+    allocation.positionsReady.get();
+    allocation.normalsReady.get();
+    allocation.indicesReady.get();
+    exec.download(out.positions, mesh.positions.data(), mesh.positions.size());
+    exec.download(out.normals, mesh.normals.data(), mesh.normals.size());
+    exec.download(out.indices, mesh.indices.data(), mesh.indices.size());
     exec.stageEnd("surface download");
     return mesh;
 }
+
+// What sparseSurface does with the sampled lattice: marching cubes to a host mesh (returned) ...
+template <class Exec>
+struct MarchToHost {
+    using Result = TriangleMesh;
+    Exec* exec;
+    template <class Lattice>
+    TriangleMesh operator()(const Lattice& lattice) const {
+        return marchingCubes(*exec, lattice);
+    }
+    SurfaceScratch<Exec>* scratch() const { return nullptr; }  // sparseSurface's own
+};
+
+// ... or into a mesh left in the backend's memory (returns the triangle count).
+template <class Exec>
+struct MarchInto {
+    using Result = std::int64_t;
+    Exec* exec;
+    BackendMesh<Exec>* out;
+    template <class Lattice>
+    std::int64_t operator()(const Lattice& lattice) const {
+        IgnoreMeshCounts counts;
+        marchingCubesInto(*exec, lattice, *out, counts);
+        return out->triangleCount;
+    }
+    SurfaceScratch<Exec>* scratch() const { return &out->scratch; }  // kept with the mesh
+};
 
 // The field at every sample of the dense lattice (tests compare the sparse lattice with it),
 // snapped off the iso-value by `snap` (snappedOffIso).
@@ -148,16 +231,23 @@ void sampleField(Exec& exec, const Field& field, const SampledFieldView& lattice
 
 // The field's surface over the sparse lattice (sparse_lattice.h): the blocks within the field's
 // reach of the n points flagged, numbered by a prefix sum, the field sampled in the kept blocks
-// only, then marched. Refused (SurfaceError) where the kept samples pass the plan's limit or,
-// without one, half the backend's free memory (`memoryName` names it in the message).
-template <class Exec, class Field>
-TriangleMesh sparseSurface(Exec& exec, const Field& field, const Real4* points, Index n,
-                           const SurfacePlan& plan, const char* memoryName) {
+// only, then marched by march(lattice) (MarchToHost, MarchInto), whose result it returns.
+// Refused (SurfaceError) where the kept samples pass the plan's limit or, without one, half the
+// backend's free memory (`memoryName` names it in the message).
+// (The functions with device lambdas name their result types: nvcc does not allow a deduced one.)
+template <class Exec, class Field, class March>
+typename March::Result sparseSurface(Exec& exec, const Field& field, const Real4* points, Index n,
+                                     const SurfacePlan& plan, const char* memoryName,
+                                     const March& march) {
     exec.stageBegin("surface blocks");
     const LatticeBlocks blocks = LatticeBlocks::of(plan.dims[0], plan.dims[1], plan.dims[2]);
     const Index blockCount = Index(blocks.count());  // planSurface keeps it under 2^28
-    ExecBuffer<Exec, std::int32_t> flags(static_cast<std::size_t>(blockCount)),
-        blockEnd(static_cast<std::size_t>(blockCount));
+    SurfaceScratch<Exec> ownScratch;
+    SurfaceScratch<Exec>& scratch = march.scratch() != nullptr ? *march.scratch() : ownScratch;
+    ExecBuffer<Exec, std::int32_t>& flags = scratch.flags;
+    ExecBuffer<Exec, std::int32_t>& blockEnd = scratch.blockEnd;
+    flags.resize(static_cast<std::size_t>(blockCount));
+    blockEnd.resize(static_cast<std::size_t>(blockCount));
     std::int32_t* flag = flags.data();
     exec.forEach(blockCount, [=] WEIR_HD(Index b) { flag[b] = 0; });
     // The field's kernels reach R from the points; two cells more keep the lowest corner of every
@@ -180,8 +270,10 @@ TriangleMesh sparseSurface(Exec& exec, const Field& field, const Real4* points, 
     if (samples > limit) {
         throw SurfaceError(surfaceTooLargeMessage(plan, samples, limit, limitGiven, memoryName));
     }
-    ExecBuffer<Exec, std::int32_t> blockSlot(static_cast<std::size_t>(blockCount)),
-        keptBlock(static_cast<std::size_t>(std::max<std::int64_t>(kept, 1)));
+    ExecBuffer<Exec, std::int32_t>& blockSlot = scratch.blockSlot;
+    ExecBuffer<Exec, std::int32_t>& keptBlock = scratch.keptBlock;
+    blockSlot.resize(static_cast<std::size_t>(blockCount));
+    keptBlock.resize(static_cast<std::size_t>(std::max<std::int64_t>(kept, 1)));
     {
         const std::int32_t* end = blockEnd.data();
         std::int32_t* slotOut = blockSlot.data();
@@ -197,7 +289,8 @@ TriangleMesh sparseSurface(Exec& exec, const Field& field, const Real4* points, 
     exec.stageEnd("surface blocks");
 
     exec.stageBegin("surface field");
-    ExecBuffer<Exec, float> values(static_cast<std::size_t>(samples));
+    ExecBuffer<Exec, float>& values = scratch.values;
+    values.resize(static_cast<std::size_t>(samples));
     SparseFieldView lattice;
     lattice.values = values.data();
     lattice.blockSlot = blockSlot.data();
@@ -225,7 +318,13 @@ TriangleMesh sparseSurface(Exec& exec, const Field& field, const Real4* points, 
         });
     }
     exec.stageEnd("surface field");
-    return marchingCubes(exec, lattice);
+    return march(lattice);
+}
+
+template <class Exec, class Field>
+TriangleMesh sparseSurface(Exec& exec, const Field& field, const Real4* points, Index n,
+                           const SurfacePlan& plan, const char* memoryName) {
+    return sparseSurface(exec, field, points, n, plan, memoryName, MarchToHost<Exec>{&exec});
 }
 
 // The isotropic field of the plan over particles binned on the backend.
@@ -242,25 +341,38 @@ inline ZhuBridsonField isotropicField(const SurfacePlan& plan, const ParticleBin
 
 // Meshes a field by sparseSurface: what withSurfaceField hands the field to. (A functor, not a
 // lambda: nvcc does not let a host lambda's type name a __device__ lambda's template argument.)
-template <class Exec>
+template <class Exec, class March = MarchToHost<Exec>>
 struct SparseSurfaceBuild {
     Exec* exec;
     const SurfacePlan* plan;
     const char* memoryName;
+    March march;
+    using Result = typename March::Result;
 
     template <class Field>
-    TriangleMesh operator()(const Field& field, const Real4* points, Index n) const {
-        return sparseSurface(*exec, field, points, n, *plan, memoryName);
+    Result operator()(const Field& field, const Real4* points, Index n) const {
+        return sparseSurface(*exec, field, points, n, *plan, memoryName, march);
     }
 };
 
 // Yu & Turk's anisotropic kernels: each particle's smoothed centre and matrix, then the centres
 // binned again (they moved by up to lambda R) with their matrices in the new order; their field
 // and centres go to build(field, centres, n).
+// What a field's build functor returns: its Result, else a host mesh.
+template <class Build, class = void>
+struct BuildResult {
+    using type = TriangleMesh;
+};
+template <class Build>
+struct BuildResult<Build, std::void_t<typename Build::Result>> {
+    using type = typename Build::Result;
+};
+
 template <class Exec, class Build>
-TriangleMesh withAnisotropicField(Exec& exec, const SurfacePlan& plan,
-                                  const ParticleBinsView& binned, const GridSpec& binSpec, Index n,
-                                  const Build& build) {
+typename BuildResult<Build>::type withAnisotropicField(Exec& exec, const SurfacePlan& plan,
+                                                       const ParticleBinsView& binned,
+                                                       const GridSpec& binSpec, Index n,
+                                                       const Build& build) {
     exec.stageBegin("surface anisotropy");
     const double neighbourhood = kAnisotropyNeighbourhood * plan.kernelRadius;
     AnisotropyParams params;
@@ -308,30 +420,13 @@ TriangleMesh withAnisotropicField(Exec& exec, const SurfacePlan& plan,
     return build(field, sortedCentres.data(), n);
 }
 
-// The plan's field over the particles on the backend: bins, then (anisotropic) the kernels;
-// returns build(field, points, n), with points the particles or the kernels' centres, from which
-// the field reaches R.
+// The plan's field over n particles already in the backend's memory (x, y, z; w unused): bins,
+// then (anisotropic) the kernels; returns build(field, points, n), with points the particles or
+// the kernels' centres, from which the field reaches R.
 template <class Exec, class Build>
-TriangleMesh withSurfaceField(Exec& exec, const HostParticles& particles, const SurfacePlan& plan,
-                              const Build& build) {
-    const Index n = Index(particles.size());
-
-    exec.stageBegin("surface upload");
-    ExecBuffer<Exec, Real4> pos(static_cast<std::size_t>(n)),
-        sortedPos(static_cast<std::size_t>(n));
-    {
-        ExecBuffer<Exec, Real> x, y, z;
-        exec.upload(x, particles.x.data(), particles.x.size());
-        exec.upload(y, particles.y.data(), particles.y.size());
-        exec.upload(z, particles.z.data(), particles.z.size());
-        const Real* px = x.data();
-        const Real* py = y.data();
-        const Real* pz = z.data();
-        Real4* out = pos.data();
-        exec.forEach(n, [=] WEIR_HD(Index i) { out[i] = {px[i], py[i], pz[i], Real(0)}; });
-    }
-    exec.stageEnd("surface upload");
-
+typename BuildResult<Build>::type withSurfaceFieldAt(Exec& exec, const Real4* pos, Index n,
+                                                     const SurfacePlan& plan, const Build& build) {
+    ExecBuffer<Exec, Real4> sortedPos(static_cast<std::size_t>(n));
     // Particles into bins of at least R / 2 (the dense cell table of grid/dense_grid.h).
     exec.stageBegin("surface bins");
     const Vec3d binExtent = plan.particleMax - plan.particleMin;
@@ -339,10 +434,10 @@ TriangleMesh withSurfaceField(Exec& exec, const HostParticles& particles, const 
         plan.particleMin, plan.particleMin + binExtent + Vec3d(1, 1, 1) * (1e-6 * plan.binSize),
         plan.binSize, 1 << 21);
     DenseGrid<Exec> bins(binSpec, 1);
-    bins.build(exec, pos.data(), n);
+    bins.build(exec, pos, n);
     {
         const Index* permutation = bins.permutation();
-        const Real4* unsorted = pos.data();
+        const Real4* unsorted = pos;
         Real4* sorted = sortedPos.data();
         exec.forEach(n, [=] WEIR_HD(Index k) { sorted[k] = unsorted[permutation[k]]; });
     }
@@ -356,18 +451,58 @@ TriangleMesh withSurfaceField(Exec& exec, const HostParticles& particles, const 
     return withAnisotropicField(exec, plan, binned, binSpec, n, build);
 }
 
+// The same over host particles, uploaded first.
+template <class Exec, class Build>
+typename BuildResult<Build>::type withSurfaceField(Exec& exec, const HostParticles& particles,
+                                                   const SurfacePlan& plan, const Build& build) {
+    const Index n = Index(particles.size());
+
+    exec.stageBegin("surface upload");
+    ExecBuffer<Exec, Real4> pos(static_cast<std::size_t>(n));
+    {
+        ExecBuffer<Exec, Real> x, y, z;
+        exec.upload(x, particles.x.data(), particles.x.size());
+        exec.upload(y, particles.y.data(), particles.y.size());
+        exec.upload(z, particles.z.data(), particles.z.size());
+        const Real* px = x.data();
+        const Real* py = y.data();
+        const Real* pz = z.data();
+        Real4* out = pos.data();
+        exec.forEach(n, [=] WEIR_HD(Index i) { out[i] = {px[i], py[i], pz[i], Real(0)}; });
+    }
+    exec.stageEnd("surface upload");
+    return withSurfaceFieldAt(exec, pos.data(), n, plan, build);
+}
+
 // Particles to mesh: bins, (anisotropic kernels), blocks, field, marching cubes; each stage's
 // time into `stages` where given. `memoryName` names the backend's memory in messages.
 template <class Exec>
 TriangleMesh extractSurface(Exec& exec, const HostParticles& particles, const SurfacePlan& plan,
                             const char* memoryName, StageTimes* stages = nullptr) {
     exec.timing = stages != nullptr;
-    TriangleMesh mesh =
-        withSurfaceField(exec, particles, plan, SparseSurfaceBuild<Exec>{&exec, &plan, memoryName});
+    TriangleMesh mesh = withSurfaceField(
+        exec, particles, plan, SparseSurfaceBuild<Exec>{&exec, &plan, memoryName, {&exec}});
     if (stages != nullptr) {
         exec.collectTimes(*stages);
     }
     return mesh;
+}
+
+// Particles already in the backend's memory (n of them at `points`, e.g. a CUDA solver's
+// positions) to a mesh left there, in `out`: the stages of extractSurface without the upload and
+// the download, and without removing slivers (a host step). Returns the triangle count.
+template <class Exec>
+std::int64_t extractSurfaceInto(Exec& exec, const Real4* points, Index n, const SurfacePlan& plan,
+                                const char* memoryName, BackendMesh<Exec>& out,
+                                StageTimes* stages = nullptr) {
+    exec.timing = stages != nullptr;
+    const std::int64_t triangles = withSurfaceFieldAt(
+        exec, points, n, plan,
+        SparseSurfaceBuild<Exec, MarchInto<Exec>>{&exec, &plan, memoryName, {&exec, &out}});
+    if (stages != nullptr) {
+        exec.collectTimes(*stages);
+    }
+    return triangles;
 }
 
 }  // namespace weir
