@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# What the 2026-12-04 session (lent no GPU) left to run on a GPU, in parts (PARTS, default all):
+#   build    weir, weir_tests, weir_water_view_bench (Release, sm_90) into build-gpu
+#   test     every CUDA test (the live water look's LbvhCuda.* and InteractiveWaterCuda.* among
+#            them, and CudaPeriodic.AgreesWithCpu/Dfsphdense in its new form: never run yet)
+#   live     issue 19's target: weir_water_view_bench at 1M (30 frames/s at 1280 x 720 with one
+#            step a frame), and the water look offline: `weir render --look water` timed on a
+#            1M dam-break frame at 32 paths per pixel
+#   sweep    issue 14: the delta-SPH stability sweep at 1M, h = 3 d, for the seven scenes not yet
+#            run there (SWEEP_SCENES), then on the simple walls at 100k (WEIR_SWEEP_SIMPLE_DELTA;
+#            27 cases: SIMPLE_RATIOS=1.5 etc. splits them over calls of 10 minutes)
+# Results under $OUT (default gpu-out). Usage: PARTS="build test live" bash bench/gpu_pending.sh
+set -uo pipefail
+out=$(realpath -m "${OUT:-gpu-out}")
+parts=" ${PARTS:-build test live sweep} "
+has() { [[ "$parts" == *" $1 "* ]]; }
+mkdir -p "$out"
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee "$out/gpu.txt"
+if has build; then
+    cmake -S . -B build-gpu -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CUDA_ARCHITECTURES=90 \
+        -DWEIR_ENABLE_PYTHON=OFF >/tmp/weir-configure.log 2>&1 ||
+        { tail -30 /tmp/weir-configure.log; exit 1; }
+    ninja -C build-gpu -j"$(nproc)" weir weir_tests weir_water_view_bench >/tmp/weir-build.log 2>&1 ||
+        { grep -E "error" -A3 /tmp/weir-build.log | head -40; exit 1; }
+    echo "built at $(date +%T)"
+fi
+if has test; then
+    OMP_NUM_THREADS=16 timeout "${TEST_TIMEOUT:-300}" ./build-gpu/weir_tests \
+        --gtest_filter="${TEST_FILTER:-*Cuda*:*cuda*:*Gpu*}" >"$out/gpu-tests.log" 2>&1
+    echo "tests exit $?"
+    grep -E "^\[ +(FAILED|SKIPPED) |Failure|PASSED|FAILED TEST" "$out/gpu-tests.log" | head -40
+fi
+if has live; then
+    timeout 300 ./build-gpu/weir_water_view_bench dam_break --particles 1M --frames 100 \
+        --warmup 10 --out "$out/water_view.png" --json "$out/water_view.json" \
+        >"$out/water_view.txt" 2>&1
+    echo "water view bench exit $?"; tail -n 20 "$out/water_view.txt"
+    timeout 200 ./build-gpu/weir run dam_break --particles 1000000 --frames 18 --format ply \
+        --overwrite -o /tmp/dam1m >"$out/run-1m.log" 2>&1
+    for samples in 32 256; do
+        /usr/bin/time -f "%e s" timeout 120 ./build-gpu/weir render /tmp/dam1m --frame 18 \
+            --look water --samples "$samples" --out "/tmp/dam1m/water$samples" \
+            >"$out/render-water-$samples.log" 2>&1
+        echo "render --look water at $samples paths: $(tail -n 1 "$out/render-water-$samples.log")"
+    done
+    cp /tmp/dam1m/water256/frame_00018.png "$out/dam_break_1m_water.png" 2>/dev/null
+fi
+if has sweep; then
+    scenes=${SWEEP_SCENES:-geyser splash_on_sphere tsunami_on_step viscous_pour floating_boxes hose_filling_glass piston_wave_maker}
+    filter=$(for s in $scenes; do printf 'ShippedScenes*/%s*:' "$s"; done)
+    WEIR_SWEEP_BACKEND=cuda WEIR_SWEEP_SIZES=1000000 WEIR_SWEEP_RATIOS=3 WEIR_SWEEP_MODELS=delta-sph \
+        timeout "${SWEEP_TIMEOUT:-560}" ./build-gpu/weir_tests --gtest_filter="${filter%:}" \
+        >"$out/sweep-1M.log" 2>&1
+    echo "1M sweep exit $?"; grep -E "^sweep |FAILED  \]" "$out/sweep-1M.log" | cut -c1-220
+    WEIR_SWEEP_BACKEND=cuda WEIR_SWEEP_SIZES=100000 WEIR_SWEEP_MODELS=delta-sph WEIR_SWEEP_SIMPLE_DELTA=1 \
+        WEIR_SWEEP_RATIOS="${SIMPLE_RATIOS:-1.5,2,3}" \
+        timeout "${SWEEP_TIMEOUT:-560}" ./build-gpu/weir_tests --gtest_filter='ShippedScenes*_simple' \
+        >"$out/sweep-simple-100k.log" 2>&1
+    echo "simple-walls sweep exit $?"; grep -E "^sweep |FAILED  \]" "$out/sweep-simple-100k.log" | cut -c1-220
+fi
+nvidia-smi -q -d PERFORMANCE | grep -A12 "Clocks Event Reasons" | grep -v "Not Active" >"$out/throttle.txt"
+cat "$out/throttle.txt"
