@@ -12,11 +12,14 @@
 #include "core/backend.h"
 #include "raytrace/interactive_water.h"
 #include "raytrace/lbvh.h"
+#include "raytrace/raytrace_test_support.h"
 #include "raytrace/water_renderer.h"
 #include "surface/surface_test_support.h"
 
 namespace weir {
 namespace {
+
+using namespace weir::testing;
 
 std::vector<BvhTriangle> randomTriangles(std::size_t n, std::mt19937& rng) {
     std::uniform_real_distribution<float> unit(0.0f, 1.0f), small(-0.03f, 0.03f),
@@ -83,40 +86,6 @@ TEST(LbvhCuda, DeviceBuildIsTheHostBuildAndFindsTheNearestHits) {
             EXPECT_GT(hits, 100) << n << " triangles";
         }
     }
-}
-
-// A ball of water over a box, in a container, seen from above and in front (the offline test's
-// scene).
-TriangleMesh waterBall(const Vec3f& centre, float radius) {
-    TriangleMesh mesh;
-    constexpr int kSlices = 48, kStacks = 24;
-    for (int j = 0; j <= kStacks; ++j) {
-        for (int i = 0; i <= kSlices; ++i) {
-            const float theta = kPiF * float(j) / kStacks, phi = 2 * kPiF * float(i) / kSlices;
-            const Vec3f n(std::sin(theta) * std::cos(phi), std::cos(theta),
-                          std::sin(theta) * std::sin(phi));
-            mesh.positions.push_back(centre + n * radius);
-            mesh.normals.push_back(n);
-        }
-    }
-    for (int j = 0; j < kStacks; ++j) {
-        for (int i = 0; i < kSlices; ++i) {
-            const auto a = std::uint32_t(j * (kSlices + 1) + i), b = a + 1, c = a + kSlices + 1,
-                       d = c + 1;
-            mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
-        }
-    }
-    return mesh;
-}
-
-PinholeCamera lookAt(const Vec3f& eye, const Vec3f& target, int width, int height) {
-    PinholeCamera camera;
-    camera.eye = eye;
-    camera.forward = normalized(target - eye);
-    camera.right = normalized(cross(camera.forward, Vec3f(0, 1, 0)));
-    camera.up = cross(camera.right, camera.forward);
-    camera.aspect = float(width) / float(height);
-    return camera;
 }
 
 TEST(InteractiveWaterCuda, AccumulatedFrameIsTheOfflineImage) {

@@ -10,10 +10,13 @@
 #include <random>
 
 #include "raytrace/path_tracer.h"
+#include "raytrace/raytrace_test_support.h"
 #include "raytrace/tracing_scene.h"
 
 namespace weir {
 namespace {
+
+using namespace weir::testing;
 
 // n small triangles scattered in a box, some large ones across it, some sharing an edge.
 std::vector<BvhTriangle> randomTriangles(std::size_t n, std::mt19937& rng, float sx = 1,
@@ -188,24 +191,7 @@ TEST(Lbvh, TrianglesSharingOneKeyPointMakeABalancedSubtree) {
 // between triangles at one distance), and paths added frame by frame (firstSample) make the
 // image of all of them at once.
 TEST(Lbvh, TracerSeesTheOfflineSceneThroughIt) {
-    TriangleMesh ball;
-    constexpr int kSlices = 24, kStacks = 12;
-    for (int j = 0; j <= kStacks; ++j) {
-        for (int i = 0; i <= kSlices; ++i) {
-            const float theta = kPiF * float(j) / kStacks, phi = 2 * kPiF * float(i) / kSlices;
-            const Vec3f n(std::sin(theta) * std::cos(phi), std::cos(theta),
-                          std::sin(theta) * std::sin(phi));
-            ball.positions.push_back(Vec3f(0.5f, 0.35f, 0.5f) + n * 0.25f);
-            ball.normals.push_back(n);
-        }
-    }
-    for (int j = 0; j < kStacks; ++j) {
-        for (int i = 0; i < kSlices; ++i) {
-            const auto a = std::uint32_t(j * (kSlices + 1) + i), b = a + 1, c = a + kSlices + 1,
-                       d = c + 1;
-            ball.indices.insert(ball.indices.end(), {a, b, d, a, d, c});
-        }
-    }
+    const TriangleMesh ball = waterBall(Vec3f(0.5f, 0.35f, 0.5f), 0.25f, 24, 12);
     TracingSceneDescription description;
     description.water = &ball;
     description.container = {{0, 0, 0}, {1, 1, 1}};

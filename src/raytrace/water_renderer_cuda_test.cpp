@@ -6,33 +6,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raytrace/raytrace_test_support.h"
 #include "raytrace/water_renderer.h"
 
 namespace weir {
 namespace {
 
-// A ball of water resting on a box, in a container, seen from above and in front.
-TriangleMesh waterBall(const Vec3f& centre, float radius) {
-    TriangleMesh mesh;
-    constexpr int kSlices = 48, kStacks = 24;
-    for (int j = 0; j <= kStacks; ++j) {
-        for (int i = 0; i <= kSlices; ++i) {
-            const float theta = kPiF * float(j) / kStacks, phi = 2 * kPiF * float(i) / kSlices;
-            const Vec3f n(std::sin(theta) * std::cos(phi), std::cos(theta),
-                          std::sin(theta) * std::sin(phi));
-            mesh.positions.push_back(centre + n * radius);
-            mesh.normals.push_back(n);
-        }
-    }
-    for (int j = 0; j < kStacks; ++j) {
-        for (int i = 0; i < kSlices; ++i) {
-            const auto a = std::uint32_t(j * (kSlices + 1) + i), b = a + 1, c = a + kSlices + 1,
-                       d = c + 1;
-            mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
-        }
-    }
-    return mesh;
-}
+using namespace weir::testing;
 
 TEST(WaterLookCuda, CudaImageEqualsTheCpuImage) {
     if (!cudaDeviceAvailable()) {
@@ -46,13 +26,9 @@ TEST(WaterLookCuda, CudaImageEqualsTheCpuImage) {
     description.obstacleBoxes = {{{0.3, 0, 0.3}, {0.7, 0.2, 0.7}}};
     description.cameraEye = Vec3d(0.5, 1.4, 2.2);
     const TracingScene scene(description);
-    PinholeCamera camera;
-    camera.eye = Vec3f(description.cameraEye);
-    camera.forward = normalized(Vec3f(0.5f, 0.4f, 0.5f) - camera.eye);
-    camera.right = normalized(cross(camera.forward, Vec3f(0, 1, 0)));
-    camera.up = cross(camera.right, camera.forward);
     const int width = 96, height = 64, samples = 32;
-    camera.aspect = float(width) / float(height);
+    const PinholeCamera camera =
+        lookAt(Vec3f(description.cameraEye), Vec3f(0.5f, 0.4f, 0.5f), width, height);
     const WaterLook look;
     const std::vector<Vec3f> cpu =
         traceWaterImage(Backend::Cpu, scene, look, camera, width, height, samples);

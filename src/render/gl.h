@@ -22,4 +22,8 @@ class RenderError : public std::runtime_error {
 // Throws RenderError naming `what` if the GL error flag is set.
 void checkGl(const char* what);
 
+// A linked program of a vertex and a fragment shader (GLSL source); throws RenderError naming
+// `name` with the compiler's or linker's log if either fails.
+GLuint buildProgram(const std::string& vertex, const std::string& fragment, const char* name);
+
 }  // namespace weir

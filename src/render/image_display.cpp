@@ -24,21 +24,6 @@ out vec4 colour;
 void main() { colour = vec4(texture(image, uv).rgb, 1.0); }
 )";
 
-GLuint compileStage(GLenum type, const char* source) {
-    const GLuint shader = glCreateShader(type);
-    glShaderSource(shader, 1, &source, nullptr);
-    glCompileShader(shader);
-    GLint ok = 0;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[1024] = {};
-        glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-        glDeleteShader(shader);
-        throw RenderError(std::string("the image display's shader does not compile: ") + log);
-    }
-    return shader;
-}
-
 }  // namespace
 
 #if !defined(WEIR_HAS_CUDA)
@@ -51,19 +36,7 @@ std::unique_ptr<ImageInterop> makeImageInterop(unsigned, std::string* why) {
 #endif
 
 ImageDisplay::ImageDisplay() {
-    const GLuint vertex = compileStage(GL_VERTEX_SHADER, kVertexShader);
-    const GLuint fragment = compileStage(GL_FRAGMENT_SHADER, kFragmentShader);
-    program_ = glCreateProgram();
-    glAttachShader(program_, vertex);
-    glAttachShader(program_, fragment);
-    glLinkProgram(program_);
-    glDeleteShader(vertex);
-    glDeleteShader(fragment);
-    GLint ok = 0;
-    glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        throw RenderError("the image display's shader does not link");
-    }
+    program_ = buildProgram(kVertexShader, kFragmentShader, "image display");
     glGenVertexArrays(1, &vao_);  // the core profile draws only with a vertex array bound
     checkGl("image display set-up");
 }

@@ -4,6 +4,7 @@
 #include <cuda_gl_interop.h>
 
 #include "core/exec_cuda.cuh"
+#include "render/gl_cuda_device.h"
 #include "render/image_display.h"
 
 namespace weir {
@@ -49,20 +50,11 @@ std::unique_ptr<ImageInterop> makeImageInterop(unsigned texture, std::string* wh
         }
         return nullptr;
     };
-    unsigned int count = 0;
-    int devices[8] = {};
-    if (cudaGLGetDevices(&count, devices, 8, cudaGLDeviceListAll) != cudaSuccess || count == 0) {
-        cudaGetLastError();  // the failed query leaves its error for the next check: clear it
-        return say("the window's OpenGL does not run on a CUDA device");
+    std::string reason;
+    if (!openGlRunsOnCurrentCudaDevice(reason)) {
+        return say(reason);
     }
-    int current = -1;
-    WEIR_CUDA_CHECK(cudaGetDevice(&current));
-    for (unsigned int k = 0; k < count; ++k) {
-        if (devices[k] == current) {
-            return std::make_unique<CudaImageInterop>(texture);
-        }
-    }
-    return say("the window's OpenGL runs on another GPU than the simulation");
+    return std::make_unique<CudaImageInterop>(texture);
 }
 
 }  // namespace weir

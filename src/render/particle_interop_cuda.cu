@@ -6,6 +6,7 @@
 
 #include "core/exec_cuda.cuh"
 #include "physics/eos.h"
+#include "render/gl_cuda_device.h"
 #include "render/particle_interop.h"
 #include "solver/simulation.h"
 
@@ -126,21 +127,31 @@ std::unique_ptr<ParticleInterop> makeParticleInterop(Simulation& simulation, std
     if (!simulation.particleArrays().onDevice) {
         return say("the simulation runs on the CPU");
     }
+    std::string reason;
+    if (!openGlRunsOnCurrentCudaDevice(reason)) {
+        return say(reason);
+    }
+    return std::make_unique<CudaParticleInterop>(simulation);
+}
+
+bool openGlRunsOnCurrentCudaDevice(std::string& why) {
     // The CUDA devices behind the current OpenGL context: none for Mesa's software renderer.
     unsigned int count = 0;
     int devices[8] = {};
     if (cudaGLGetDevices(&count, devices, 8, cudaGLDeviceListAll) != cudaSuccess || count == 0) {
         cudaGetLastError();  // the failed query leaves its error for the next check: clear it
-        return say("the window's OpenGL does not run on a CUDA device");
+        why = "the window's OpenGL does not run on a CUDA device";
+        return false;
     }
     int current = -1;
     WEIR_CUDA_CHECK(cudaGetDevice(&current));
     for (unsigned int k = 0; k < count; ++k) {
         if (devices[k] == current) {
-            return std::make_unique<CudaParticleInterop>(simulation);
+            return true;
         }
     }
-    return say("the window's OpenGL runs on another GPU than the simulation");
+    why = "the window's OpenGL runs on another GPU than the simulation";
+    return false;
 }
 
 }  // namespace weir

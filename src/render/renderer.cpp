@@ -24,6 +24,46 @@ void checkGl(const char* what) {
 
 namespace {
 
+GLuint compileShader(GLenum type, const std::string& source, const char* name) {
+    const GLuint shader = glCreateShader(type);
+    const char* text = source.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = {};
+        glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+        glDeleteShader(shader);
+        throw RenderError(std::string("shader '") + name + "' does not compile: " + log);
+    }
+    return shader;
+}
+
+}  // namespace
+
+GLuint buildProgram(const std::string& vertex, const std::string& fragment, const char* name) {
+    const GLuint vs = compileShader(GL_VERTEX_SHADER, vertex, name);
+    const GLuint fs = compileShader(GL_FRAGMENT_SHADER, fragment, name);
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, vs);
+    glAttachShader(program, fs);
+    glLinkProgram(program);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = {};
+        glGetProgramInfoLog(program, sizeof log, nullptr, log);
+        glDeleteProgram(program);
+        throw RenderError(std::string("shader '") + name + "' does not link: " + log);
+    }
+    return program;
+}
+
+namespace {
+
 // The particle and solid shading, shared by their fragment shaders; V is taken as straight ahead
 // so that a sphere's centre has the same shade anywhere on screen.
 constexpr const char* kLightingGlsl = R"(
@@ -182,42 +222,6 @@ const Rgb kBodyColour{0.72f, 0.48f, 0.26f};  // rigid bodies: wood
 const Rgb kTextColour{0.93f, 0.93f, 0.93f};
 // Spray, foam and bubbles (whitewater/).
 const Rgb kWhitewaterColour{0.92f, 0.94f, 0.96f};
-
-GLuint compileShader(GLenum type, const std::string& source, const char* name) {
-    const GLuint shader = glCreateShader(type);
-    const char* text = source.c_str();
-    glShaderSource(shader, 1, &text, nullptr);
-    glCompileShader(shader);
-    GLint ok = 0;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-        glDeleteShader(shader);
-        throw RenderError(std::string("shader '") + name + "' does not compile: " + log);
-    }
-    return shader;
-}
-
-GLuint buildProgram(const std::string& vertex, const std::string& fragment, const char* name) {
-    const GLuint vs = compileShader(GL_VERTEX_SHADER, vertex, name);
-    const GLuint fs = compileShader(GL_FRAGMENT_SHADER, fragment, name);
-    const GLuint program = glCreateProgram();
-    glAttachShader(program, vs);
-    glAttachShader(program, fs);
-    glLinkProgram(program);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        glGetProgramInfoLog(program, sizeof log, nullptr, log);
-        glDeleteProgram(program);
-        throw RenderError(std::string("shader '") + name + "' does not link: " + log);
-    }
-    return program;
-}
 
 std::string withLighting(const char* body) {
     return std::string("#version 330 core\n") + kLightingGlsl + body;
@@ -474,24 +478,20 @@ Renderer::Renderer() : gpu_(std::make_unique<Gpu>()) {
     g.lineProgram = buildProgram(kLineVertex, kFlatFragment, "lines");
     g.overlayProgram = buildProgram(kOverlayVertex, kOverlayFragment, "overlay");
 
-    glGenVertexArrays(1, &g.particleVao);
-    glGenBuffers(2, g.particleBuffers);
-    glBindVertexArray(g.particleVao);
-    glBindBuffer(GL_ARRAY_BUFFER, g.particleBuffers[0]);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-    glBindBuffer(GL_ARRAY_BUFFER, g.particleBuffers[1]);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
-    glGenVertexArrays(1, &g.whitewaterVao);
-    glGenBuffers(2, g.whitewaterBuffers);
-    glBindVertexArray(g.whitewaterVao);
-    glBindBuffer(GL_ARRAY_BUFFER, g.whitewaterBuffers[0]);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-    glBindBuffer(GL_ARRAY_BUFFER, g.whitewaterBuffers[1]);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+    // Points: positions (3 floats) in buffer 0, a value each (1 float) in buffer 1.
+    auto makePointArrays = [](GLuint& vao, GLuint buffers[2]) {
+        glGenVertexArrays(1, &vao);
+        glGenBuffers(2, buffers);
+        glBindVertexArray(vao);
+        for (GLuint attribute : {0U, 1U}) {
+            glBindBuffer(GL_ARRAY_BUFFER, buffers[attribute]);
+            glEnableVertexAttribArray(attribute);
+            glVertexAttribPointer(attribute, attribute == 0 ? 3 : 1, GL_FLOAT, GL_FALSE, 0,
+                                  nullptr);
+        }
+    };
+    makePointArrays(g.particleVao, g.particleBuffers);
+    makePointArrays(g.whitewaterVao, g.whitewaterBuffers);
     glBindVertexArray(0);
     g.solids.create({3, 3});
     g.bodies.create({3, 3});

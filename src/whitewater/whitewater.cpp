@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/counter_random.h"
 #include "whitewater/fluid_grid.h"
 
 namespace weir {
@@ -15,35 +16,14 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Counter-based random numbers: the n-th number of a stream is a hash of (frame, fluid particle
-// id, n), so the diffuse particles are the same whatever the thread count or the order the
-// work runs in (the same scheme as raytrace/sample_stream.h, which sits above this layer).
-std::uint32_t hashBits(std::uint32_t x) {
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return x;
+// The random numbers of a fluid particle's new diffuse particles in one frame interval: a stream
+// keyed by (frame, fluid particle id) (core/counter_random.h), so the diffuse particles are the
+// same whatever the thread count or the order the work runs in.
+CounterStream drawStream(std::int64_t frame, std::int64_t particle) {
+    return CounterStream(mixBits(
+        std::uint32_t(particle) * 0x9e3779b9U ^ mixBits(std::uint32_t(frame) + 0x632be5abU) ^
+        mixBits(std::uint32_t(std::uint64_t(particle) >> 32) + 0x1b873593U)));
 }
-
-class DrawStream {
-   public:
-    DrawStream(std::int64_t frame, std::int64_t particle)
-        : key_(hashBits(std::uint32_t(particle) * 0x9e3779b9U ^
-                        hashBits(std::uint32_t(frame) + 0x632be5abU) ^
-                        hashBits(std::uint32_t(std::uint64_t(particle) >> 32) + 0x1b873593U))) {}
-    // Uniform in [0, 1).
-    double next() {
-        const std::uint32_t bits = hashBits(key_ ^ hashBits(draw_ * 0x85ebca6bU + 0x27d4eb2fU));
-        ++draw_;
-        return double(bits >> 8) * (1.0 / 16777216.0);
-    }
-
-   private:
-    std::uint32_t key_;
-    std::uint32_t draw_ = 0;
-};
 
 // The paper's clamp of a potential to [0, 1].
 double clampPotential(double value, double lo, double hi) {
@@ -306,7 +286,7 @@ WhitewaterStep Whitewater::advance(const HostParticles& from, std::int64_t fromI
                                  s.waveCrestRate * potentials.waveCrest[i]) *
                                 dt;
         if (expected > 0) {
-            DrawStream random(fromIndex, from.idOf(i));
+            CounterStream random = drawStream(fromIndex, from.idOf(i));
             const double whole = std::floor(expected);
             count[i] = std::uint32_t(whole) + (random.next() < expected - whole ? 1 : 0);
         }
@@ -328,7 +308,7 @@ WhitewaterStep Whitewater::advance(const HostParticles& from, std::int64_t fromI
         if (count[i] == 0 || first[i] >= step.born) {
             continue;
         }
-        DrawStream random(fromIndex, from.idOf(i));
+        CounterStream random = drawStream(fromIndex, from.idOf(i));
         random.next();  // the draw that rounded the count
         const Vec3d x = positionOf(from, i), v = velocityOf(from, i);
         const double speed = length(v);
