@@ -8,23 +8,7 @@
 # Needs a build (build/weir) and a Python with pysplishsplash and numpy (PYTHON=...; default
 # build/python-env/bin/python, which scripts/setup.sh makes; pip install pysplishsplash into it).
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
-radius=${1:-0.0125}
-duration=${2:-0.5}
-threads=${3:-2}
-out=$(realpath -m "${4:-bench-out/dfsph-cpu-peers}")
-python=${PYTHON:-$root/build/python-env/bin/python}
-weir=${WEIR:-$root/build/weir}
-mkdir -p "$out"
-export OMP_NUM_THREADS=$threads
-
-# SPlisHSPlasH (its wheel's bundled GL libraries clash with Debian's libGLX at import);
-# REUSE_PEER=1 keeps an earlier run's results in the out-dir (to re-measure weir alone).
-if [ -z "${REUSE_PEER:-}" ] || [ ! -f "$out/splishsplash.json" ]; then
-    LD_PRELOAD=/lib/x86_64-linux-gnu/libGLdispatch.so.0 \
-        "$python" "$root/bench/peers/splishsplash_dam_break.py" "$radius" "$duration" \
-        "$out/splishsplash.json" >"$out/splishsplash.log" 2>&1
-fi
+source "$(dirname "$0")/peer_common.sh" dfsph 0.5 bench-out/dfsph-cpu-peers "$@"
 
 # weir, the same layout: the cube's side a whole number of spacings (SPlisHSPlasH seeds
 # floor(1 m / 2r) - 1 a side), shifted into weir's box at the origin.

@@ -12,22 +12,7 @@
 # Needs a build (build/weir) and a Python with pysplishsplash and numpy (PYTHON=...; default
 # build/python-env/bin/python; pip install pysplishsplash into it).
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
-radius=${1:-0.0125}
-duration=${2:-0.1}
-threads=${3:-2}
-out=$(realpath -m "${4:-bench-out/wcsph-cpu-peers}")
-python=${PYTHON:-$root/build/python-env/bin/python}
-weir=${WEIR:-$root/build/weir}
-mkdir -p "$out"
-export OMP_NUM_THREADS=$threads
-
-# SPlisHSPlasH (its wheel's bundled GL libraries clash with Debian's libGLX at import).
-if [ -z "${REUSE_PEER:-}" ] || [ ! -f "$out/splishsplash.json" ]; then
-    LD_PRELOAD=/lib/x86_64-linux-gnu/libGLdispatch.so.0 \
-        "$python" "$root/bench/peers/splishsplash_dam_break.py" "$radius" "$duration" \
-        "$out/splishsplash.json" wcsph >"$out/splishsplash.log" 2>&1
-fi
+source "$(dirname "$0")/peer_common.sh" wcsph 0.1 bench-out/wcsph-cpu-peers "$@"
 
 d=$("$python" -c "print(2 * $radius)")
 side=$("$python" -c "import math; n = math.floor(1 / (2 * $radius) + 1e-9) - 1; print(n * 2 * $radius)")

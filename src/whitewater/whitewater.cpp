@@ -8,13 +8,12 @@
 #include <string>
 
 #include "core/counter_random.h"
+#include "physics/kernels.h"
 #include "whitewater/fluid_grid.h"
 
 namespace weir {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The random numbers of a fluid particle's new diffuse particles in one frame interval: a stream
 // keyed by (frame, fluid particle id) (core/counter_random.h), so the diffuse particles are the
