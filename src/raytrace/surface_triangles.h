@@ -41,6 +41,23 @@ WEIR_HD inline bool faceLiesOnPlane(const Vec3f corners[3], const Vec3f& faceNor
     return true;
 }
 
+// The unit normal of the face with these corners, or false for a degenerate face: one whose
+// doubled area is below 1e-6 of its longest edge squared. The relative test gives the CPU and CUDA
+// the same answer: on a GPU the cross product is contracted to fused multiply-adds, which leave a
+// rounding residue (about 1e-8 of an edge squared) where two corners coincide, so "area > 0"
+// alone keeps on the GPU faces the CPU drops.
+WEIR_HD inline bool faceNormalOf(const Vec3f corners[3], Vec3f& faceNormal) {
+    const Vec3f u = corners[1] - corners[0], v = corners[2] - corners[0],
+                w = corners[2] - corners[1];
+    const Vec3f face = cross(u, v);
+    const float area = length(face);
+    const float longest = fmaxf(dot(u, u), fmaxf(dot(v, v), dot(w, w)));
+    if (!(area > 1e-6f * longest)) {
+        return false;
+    }
+    faceNormal = face / area;
+    return true;
+}
 // Surface triangle t as the tracer takes it, as the offline scene makes it: left out (false) when
 // degenerate or on the floor or a wall; vertex normals made unit, the face's where one is 0.
 WEIR_HD inline bool keptSurfaceTriangle(const SurfaceMeshView& mesh, std::int64_t t,
@@ -52,12 +69,10 @@ WEIR_HD inline bool keptSurfaceTriangle(const SurfaceMeshView& mesh, std::int64_
         corners[c] = mesh.positions[v];
         normals[c] = mesh.normals[v];
     }
-    const Vec3f face = cross(corners[1] - corners[0], corners[2] - corners[0]);
-    const float area = length(face);
-    if (!(area > 0)) {
+    Vec3f faceNormal;
+    if (!faceNormalOf(corners, faceNormal)) {
         return false;
     }
-    const Vec3f faceNormal = face / area;
     if (rule.distance > 0) {
         bool onContainer = faceLiesOnPlane(corners, faceNormal, 1, rule.lo.y, -1, rule.distance);
         for (int axis = 0; axis < 3 && !onContainer; axis += 2) {

@@ -68,5 +68,20 @@ TEST(SurfaceTriangles, KeptFacesAreTheOfflineScenesWaterTriangles) {
     EXPECT_TRUE(live == offline) << "the kept triangles differ from the offline scene's";
 }
 
+TEST(SurfaceTriangles, FacesWithCoincidentCornersAreDegenerateWhateverTheRounding) {
+    // Two corners at one point: the cross product is 0 here, but a GPU's fused multiply-adds
+    // leave a residue of about 1e-8 of an edge squared; that residue must not keep the face.
+    const Vec3f a(0.1f, 0.2f, 0.3f), b(0.7f, 0.25f, 0.35f);
+    Vec3f normal;
+    const Vec3f coincident[3] = {a, b, b};
+    EXPECT_FALSE(faceNormalOf(coincident, normal));
+    const Vec3f nudged[3] = {a, b, b + Vec3f(0, 1e-8f, 0)};  // a residue-sized sliver
+    EXPECT_FALSE(faceNormalOf(nudged, normal));
+    const Vec3f thin[3] = {a, b, b + Vec3f(0, 1e-3f, 0)};  // thin but real: kept
+    ASSERT_TRUE(faceNormalOf(thin, normal));
+    EXPECT_NEAR(length(normal), 1.0f, 1e-6f);
+    EXPECT_NEAR(dot(normal, b - a), 0.0f, 1e-6f);
+}
+
 }  // namespace
 }  // namespace weir

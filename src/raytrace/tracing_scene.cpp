@@ -119,12 +119,10 @@ TracingScene::TracingScene(const TracingSceneDescription& d) {
                 corners[c] = mesh.positions[v];
                 normals[c] = smooth ? mesh.normals[v] : Vec3f();
             }
-            const Vec3f face = cross(corners[1] - corners[0], corners[2] - corners[0]);
-            const float area = length(face);
-            if (!(area > 0)) {
+            Vec3f faceNormal;
+            if (!faceNormalOf(corners, faceNormal)) {
                 continue;
             }
-            const Vec3f faceNormal = face / area;
             bool onContainer = false;
             if (d.contactDistance > 0) {
                 onContainer =
