@@ -231,6 +231,7 @@ class Dfsph final : public PressureSolver<Exec> {
         Real* accumulated = warm_[divergence ? 1 : 0].data();
         const unsigned char* interior = interior_.data();
         const Real share = divergence ? kDivergenceWarmShare : kDensityWarmShare;
+        const Real relaxation = dfsphRelaxation(params);
         s.exec.forEach(1, [=] WEIR_HD(Index) { dfsphBeginSolve(monitor, clock); });
         s.exec.forEach(n, [=] WEIR_HD(Index i) {
             dfsphWarmStartAt(i, vel, divergence, share, clock, kappaOverRho, accumulated, interior);
@@ -244,7 +245,7 @@ class Dfsph final : public PressureSolver<Exec> {
         for (int sweep = 0; sweep <= maximum; ++sweep) {
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
                 dfsphPredictAt(i, pv, nb, params, vel, factor, divergence, clock, monitor,
-                               kappaOverRho, error, accumulated, interior);
+                               kappaOverRho, error, accumulated, interior, relaxation);
             });
             copyStiffnessToGhosts(s, kappaOverRho, accumulated, error);
             s.exec.sum(error, n, &monitor->errorSum);
