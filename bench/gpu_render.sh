@@ -3,7 +3,8 @@
 # 24.04 H100/H200 machines): unpacks the .deb files of .gl/ (scripts/fetch_gl_runtime.sh), then
 # times, with the GPU simulation's frames of the dam break at 100k and 1M particles:
 #   weir render (particles, 1280x720, EGL on the NVIDIA driver), weir render --surface,
-#   weir mesh --backend cuda (and cpu at 100k), and weir view under Xvfb (GLX on NVIDIA).
+#   weir mesh --backend cuda (and cpu at 100k), weir render --look water (WATER_SAMPLES paths per
+#   pixel, default 64), and weir view under Xvfb (GLX on NVIDIA; VIEW_FRAMES=0 leaves it out).
 # Prints a summary table; $OUT (default ./gpu-render-out) gets summary.txt, logs.tar.gz and a few
 # images. Every step has a time limit and a failure does not stop the others: about 2-4 minutes
 # on an H100.
@@ -138,6 +139,12 @@ for size in $sizes; do
     step "mesh-cuda-$n" 180 "$weir" mesh "$d" --backend "$backend" --format ply -q -o "$d/mesh-cuda"
     k=$(count "$d/mesh-cuda" .ply)
     row "mesh $n $backend, ply ($k frames)" "$(ms_per "$t0" "$t1" "$k") ms/frame$(own "mesh-cuda-$n")"
+    # The water look (path traced on the backend, no OpenGL), WATER_SAMPLES paths per pixel.
+    step "render-water-$n" 240 "$weir" render "$d" --scene dam_break --look water \
+        --backend "$backend" --samples "${WATER_SAMPLES:-64}" -o "$d/water"
+    k=$(count "$d/water" .png)
+    row "render --look water $n, $backend, ${WATER_SAMPLES:-64} paths ($k img)" "$(ms_per "$t0" "$t1" "$k") ms/image$(own "render-water-$n")"
+    cp "$d/water/$(ls "$d/water" 2>/dev/null | tail -1)" "$out/water.png" 2>/dev/null
     if [ "$n" -le 100000 ]; then
         step "mesh-cpu-$n" 180 "$weir" mesh "$d" --backend cpu --format ply -q -o "$d/mesh-cpu"
         k=$(count "$d/mesh-cpu" .ply)
@@ -152,7 +159,7 @@ done
 # --- 4. weir view under Xvfb -------------------------------------------------------------------
 say "== weir view under Xvfb"
 xvfb_ok=0
-if [ -x "$R/usr/bin/Xvfb" ]; then
+if [ "$view_frames" -gt 0 ] && [ -x "$R/usr/bin/Xvfb" ]; then
     ldd "$R/usr/bin/Xvfb" | grep "not found" | sed 's/^/   Xvfb: /' | tee -a "$summary"
     "$R/usr/bin/Xvfb" :99 -screen 0 1920x1080x24 -nolisten tcp -xkbdir "$R/usr/share/X11/xkb" \
         >"$logs/xvfb.log" 2>&1 &
@@ -180,7 +187,9 @@ view() {  # view NAME VENDOR N FRAMES
     grep -oE "particles by [^)]*\)?" "$logs/$1.log" | head -1 | sed 's/^/   /' | tee -a "$summary"
     cp "$work/$1.png" "$out/$1.png" 2>/dev/null
 }
-if [ $xvfb_ok = 1 ]; then
+if [ "$view_frames" -le 0 ]; then
+    say "   (VIEW_FRAMES=0: not measured)"
+elif [ $xvfb_ok = 1 ]; then
     first=""
     for size in $sizes; do
         n=${size%%:*}
