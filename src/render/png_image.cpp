@@ -20,15 +20,14 @@ void writePng(const std::string& path, const Image& image) {
     png.width = png_uint_32(image.width);
     png.height = png_uint_32(image.height);
     png.format = PNG_FORMAT_RGB;
-    png_alloc_size_t size = 0;
     const png_int_32 stride = image.width * 3;
-    std::vector<std::uint8_t> bytes;
-    if (png_image_write_to_memory(&png, nullptr, &size, 0, image.rgb.data(), stride, nullptr)) {
-        bytes.resize(size);
-        if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.rgb.data(), stride,
-                                       nullptr)) {
-            bytes.clear();
-        }
+    // Encoded once, into a buffer of libpng's bound on the encoded size (asking for the size
+    // first would encode twice: half of the time `weir render` spent writing a 1280 x 720 image).
+    png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);
+    std::vector<std::uint8_t> bytes(size);
+    if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.rgb.data(), stride,
+                                   nullptr)) {
+        bytes.clear();
     }
     if (bytes.empty()) {
         const std::string reason = png.message;
