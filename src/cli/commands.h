@@ -105,6 +105,9 @@ struct RenderOptions {
     std::string look = "preview";  // preview (OpenGL) or water (path traced, raytrace/)
     int samples = 0;  // per pixel: multisampling (preview) or paths (water); 0: the look's default
     std::string exportWater;  // --look water: also write what is traced here; empty: nothing
+    // --look water: the shutter is open for this share of the time between frames, centred on
+    // the frame, the surface moved by its velocity (0: no motion blur).
+    double motionBlur = 0;
     // Spray, foam and bubbles (whitewater_NNNNN.ply, `weir whitewater`) drawn with the fluid from
     // this folder; empty: FRAMES/whitewater where it exists. noWhitewater: none.
     std::string whitewater;

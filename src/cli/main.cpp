@@ -297,6 +297,12 @@ int weirMain(int argc, char** argv) {
                           "With --look water: also write what is traced into this folder, for "
                           "other renderers: per frame the water's triangles (.obj), camera and "
                           "constants (.json), linear radiance (.pfm); sky.hdr (docs/rendering.md)");
+    renderCmd
+        ->add_option("--motion-blur", render.motionBlur,
+                     "With --look water: blur the moving surface as a camera whose shutter is open "
+                     "for this share of the time between frames (0.5: a 180-degree shutter; "
+                     "default 0: none), traced in up to 8 time slices")
+        ->check(CLI::Range(0.0, 1.0));
     addSurfaceField(renderCmd, render.surfaceField, "With --surface: the surface field, ");
     renderCmd
         ->add_option("--backend", render.backend,

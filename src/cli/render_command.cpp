@@ -22,6 +22,7 @@
 #include "render/gl.h"
 #include "render/renderer.h"
 #include "scene/setup.h"
+#include "surface/point_velocity.h"
 #include "surface/surface.h"
 #include "whitewater/whitewater_files.h"
 #include "whitewater/whitewater_ply.h"
@@ -107,6 +108,19 @@ void checkRenderOptions(const RenderOptions& o) {
     if (!o.exportWater.empty() && look.look != Look::Water) {
         throw std::invalid_argument(
             "--export-water writes what the water look traces: it needs --look water");
+    }
+    if (!(o.motionBlur >= 0 && o.motionBlur <= 1)) {
+        throw std::invalid_argument("--motion-blur " + std::to_string(o.motionBlur) +
+                                    " must be a share of the time between frames in [0, 1]");
+    }
+    if (o.motionBlur > 0 && look.look != Look::Water) {
+        throw std::invalid_argument(
+            "--motion-blur blurs the water look's moving surface: it needs --look water");
+    }
+    if (o.motionBlur > 0 && !o.exportWater.empty()) {
+        throw std::invalid_argument(
+            "--export-water writes one surface a frame, --motion-blur traces several: use one "
+            "of them");
     }
 }
 
@@ -270,9 +284,18 @@ class WaterImager : public Imager {
         }
     }
     std::string contextDescription() const override {
-        return "path traced, " + std::to_string(samples_) + " paths per pixel, on " +
-               describeBackend(backend_);
+        std::string text = "path traced, " + std::to_string(samples_) + " paths per pixel";
+        if (shutter_ > 0) {
+            text += ", motion blur over " + std::to_string(std::lround(shutter_ * 1e3)) +
+                    " ms in " + std::to_string(motionSlices()) + " time slices";
+        }
+        return text + ", on " + describeBackend(backend_);
     }
+    // Motion blur: the shutter is open this long (s), centred on each frame's time; 0: none.
+    void setShutter(double seconds) { shutter_ = seconds; }
+    // Up to 8 time slices, each a share of the paths (the paths of slice k follow slice k-1's,
+    // so a fluid at rest gives the image without blur).
+    int motionSlices() const { return std::min(samples_, 8); }
 
     void render(std::int64_t index, const HostParticles& particles,
                 const std::vector<BodyPose>& poses) override {
@@ -297,18 +320,23 @@ class WaterImager : public Imager {
         // Where the fluid touches the floor and walls its surface lies within about a particle
         // radius of them: a spacing takes those faces and no others.
         description.contactDistance = 2 * radius_;
-        const TracingScene scene(description);
         Image image(width_, height_);
-        const std::vector<Vec3f> radiance =
-            traceWaterImage(backend_, scene, look_, camera_, width_, height_, samples_);
+        std::vector<Vec3f> radiance;
+        std::optional<TracingScene> scene;  // without motion blur: the one scene traced
+        if (shutter_ > 0) {
+            radiance = traceMotionBlurred(mesh, particles, description);
+        } else {
+            scene.emplace(description);
+            radiance = traceWaterImage(backend_, *scene, look_, camera_, width_, height_, samples_);
+        }
         image.rgb = toneMapToSrgb8(radiance, look_.exposure);
         traceSeconds_ += secondsSince(traceStart);
-        if (!exportDir_.empty()) {
+        if (scene && !exportDir_.empty()) {  // (checkRenderOptions: not with motion blur)
             // What was traced, for another renderer (docs/rendering.md, "Checked against
             // Blender Cycles").
             const fs::path stem = fs::path(exportDir_) / fs::path(imageName(index)).stem();
-            writeTracedWaterObj(stem.string() + "_water.obj", scene);
-            writeWaterSceneJson(stem.string() + ".json", scene, look_, camera_, width_, height_,
+            writeTracedWaterObj(stem.string() + "_water.obj", *scene);
+            writeWaterSceneJson(stem.string() + ".json", *scene, look_, camera_, width_, height_,
                                 samples_);
             writeRadiancePfm(stem.string() + ".pfm", radiance, width_, height_);
         }
@@ -317,6 +345,39 @@ class WaterImager : public Imager {
         ++images_;
     }
     int images() const override { return images_; }
+
+    // The image as a shutter open for shutter_ seconds sees it: the surface moved by its vertices'
+    // velocities (the particles' within 2 d) to the middle of each time slice, each slice traced
+    // with its share of the paths, the slices weighted by their paths. The floor, walls,
+    // obstacles, bodies and whitewater stay at the frame's time.
+    std::vector<Vec3f> traceMotionBlurred(const TriangleMesh& mesh, const HostParticles& particles,
+                                          TracingSceneDescription description) const {
+        const std::vector<Vec3f> velocity =
+            particleVelocityAt(particles, mesh.positions, 4 * radius_);
+        const int slices = motionSlices();
+        std::vector<Vec3f> sum(std::size_t(width_) * std::size_t(height_));
+        TriangleMesh moved = mesh;
+        description.water = &moved;
+        int first = 0;
+        for (int k = 0; k < slices; ++k) {
+            const int paths = samples_ / slices + (k < samples_ % slices ? 1 : 0);
+            const float t = float(shutter_ * ((k + 0.5) / slices - 0.5));
+            for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+                moved.positions[v] = mesh.positions[v] + velocity[v] * t;
+            }
+            const std::vector<Vec3f> slice = traceWaterImage(
+                backend_, TracingScene(description), look_, camera_, width_, height_, paths, first);
+            for (std::size_t i = 0; i < sum.size(); ++i) {
+                sum[i] += slice[i] * float(paths);
+            }
+            first += paths;
+        }
+        for (Vec3f& pixel : sum) {
+            pixel = pixel * (1.0f / float(samples_));
+        }
+        return sum;
+    }
+
     std::string timing() const override {
         if (images_ == 0) {
             return "no images";
@@ -339,11 +400,31 @@ class WaterImager : public Imager {
     SurfaceField surfaceField_;
     Vec3d eye_;
     std::string exportDir_;  // --export-water; empty: none
+    double shutter_ = 0;     // --motion-blur: seconds the shutter is open; 0: none
     PinholeCamera camera_;
     WaterLook look_;
     int images_ = 0;
     double seconds_ = 0, meshSeconds_ = 0, traceSeconds_ = 0;
 };
+
+// The simulated time between a run's frames: from its frame index, else the scene's frame rate.
+double timeBetweenFrames(const std::vector<FrameEntry>& all, const std::optional<Scene>& scene,
+                         const std::string& framesDir) {
+    if (all.size() >= 2 && all.back().index > all.front().index) {
+        const double interval =
+            (all.back().time - all.front().time) / double(all.back().index - all.front().index);
+        if (interval > 0 && std::isfinite(interval)) {
+            return interval;
+        }
+    }
+    if (scene) {
+        return 1.0 / scene->frameRate;
+    }
+    throw std::invalid_argument("--motion-blur needs the time between frames: the frames in '" +
+                                framesDir +
+                                "' do not give it (one frame, or times that do not increase) "
+                                "and there is no scene; name one with --scene");
+}
 
 // `weir run --render`: the scene's geometry and physics fix the camera and colour range.
 class RunRenderer : public RunObserver {
@@ -444,8 +525,9 @@ int renderCommand(const RenderOptions& options) {
         if (!options.video.empty()) {
             checkVideoOutput("--video", options.video);
         }
-        const std::vector<FrameEntry> frames = selectFrames(
-            readFrameIndex(options.framesDir), options.frame, options.frames, options.framesDir);
+        const std::vector<FrameEntry> allFrames = readFrameIndex(options.framesDir);
+        const std::vector<FrameEntry> frames =
+            selectFrames(allFrames, options.frame, options.frames, options.framesDir);
         const RunRecord record = readRunRecord(options.framesDir);
         const std::string imagesDir = options.outDir.empty()
                                           ? (fs::path(options.framesDir) / "images").string()
@@ -500,9 +582,14 @@ int renderCommand(const RenderOptions& options) {
 
         std::unique_ptr<Imager> imager;
         if (look == Look::Water) {
-            imager = std::make_unique<WaterImager>(
+            auto water = std::make_unique<WaterImager>(
                 geometry, scene ? scene->obstacleMeshes : std::vector<MeshObstacle>{}, imagesDir,
                 options, camera);
+            if (options.motionBlur > 0) {
+                water->setShutter(options.motionBlur *
+                                  timeBetweenFrames(allFrames, scene, options.framesDir));
+            }
+            imager = std::move(water);
         } else {
             auto preview = std::make_unique<FrameImager>(geometry, imagesDir, options, camera);
             preview->setColourRange(range);

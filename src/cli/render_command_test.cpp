@@ -379,6 +379,50 @@ TEST_F(RenderCli, WaterLookRefusesBadValuesNamingTheOption) {
     EXPECT_TRUE(contains(help.output, "--look"));
 }
 
+TEST_F(RenderCli, MotionBlurSmearsTheMovingSurfaceOnly) {
+    writeFile("tiny.json", kTinyDrawScene);
+    ASSERT_EQ(weir("run tiny.json --backend cpu --quiet --frames 3 --out frames").exitCode, 0);
+    const std::string water =
+        "render frames --look water --width 96 --height 64 --samples 16 --backend cpu --quiet ";
+    auto levelsApart = [&](const std::string& a, const std::string& b, int above) {
+        const Image x = readPng(path(a)), y = readPng(path(b));
+        EXPECT_EQ(x.rgb.size(), y.rgb.size());
+        int worst = 0;
+        std::size_t count = 0;
+        for (std::size_t i = 0; i < std::min(x.rgb.size(), y.rgb.size()); ++i) {
+            const int d = std::abs(int(x.rgb[i]) - int(y.rgb[i]));
+            worst = std::max(worst, d);
+            count += d > above;
+        }
+        return std::make_pair(worst, count);
+    };
+    // Frame 0 is the fluid at rest as seeded: every time slice sees the same surface, and the
+    // slices' consecutive shares of the paths make the sharp image (up to float rounding).
+    ASSERT_EQ(weir(water + "--frame 0 --out sharp").exitCode, 0);
+    const RunResult blurred = weir(water + "--frame 0 --motion-blur 1 --out blurred");
+    ASSERT_EQ(blurred.exitCode, 0) << blurred.output;
+    EXPECT_LE(levelsApart("sharp/frame_00000.png", "blurred/frame_00000.png", 1).first, 1);
+    // Frame 3: the column is slumping; a shutter open for a whole frame (33 ms) changes the image
+    // where the surface moves.
+    ASSERT_EQ(weir(water + "--frame 3 --out sharp").exitCode, 0);
+    ASSERT_EQ(weir(water + "--frame 3 --motion-blur 1 --out blurred").exitCode, 0);
+    const auto [worst, changed] =
+        levelsApart("sharp/frame_00003.png", "blurred/frame_00003.png", 6);
+    EXPECT_GT(worst, 20);
+    EXPECT_GT(changed, 50u);
+    // Refused, naming the option: a share outside [0, 1], the preview look, --export-water.
+    const RunResult share = weir("render frames --look water --motion-blur 1.5");
+    EXPECT_EQ(share.exitCode, 2) << share.output;
+    EXPECT_TRUE(contains(share.output, "--motion-blur"));
+    const RunResult preview = weir("render frames --motion-blur 0.5");
+    EXPECT_EQ(preview.exitCode, 2) << preview.output;
+    EXPECT_TRUE(contains(preview.output, "--motion-blur blurs the water look"));
+    const RunResult exported =
+        weir("render frames --look water --motion-blur 0.5 --export-water exported");
+    EXPECT_EQ(exported.exitCode, 2) << exported.output;
+    EXPECT_TRUE(contains(exported.output, "use one of them"));
+}
+
 // --- the artists' loop (issue 20) ---------------------------------------------------------
 
 TEST_F(RenderCli, RenderNeedsNoSceneAsFramesJsonRecordsIt) {

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "raytrace/raytrace_test_support.h"
 #include "raytrace/water_renderer.h"
 
 namespace weir {
@@ -229,6 +230,35 @@ TEST(WaterLook, ToneCurveMapsBlackToBlackAndSaturatesBrightLight) {
     EXPECT_EQ(toneMappedByte(1000.0f, 1.0f), 255);
     EXPECT_LT(toneMappedByte(0.18f, 1.0f), toneMappedByte(0.36f, 1.0f));
     EXPECT_EQ(toneMappedByte(0.18f, 2.0f), toneMappedByte(0.36f, 1.0f));
+}
+
+TEST(WaterLook, ImagesOfConsecutivePathsAddUpToTheImageOfAll) {
+    // Motion blur traces time slices with consecutive shares of the paths (firstSample): paths
+    // 0-4 and 5-15, weighted by 5 and 11, are the image of paths 0-15.
+    const TriangleMesh ball = testing::waterBall(Vec3f(0.5f, 0.45f, 0.5f), 0.25f);
+    TracingSceneDescription description;
+    description.water = &ball;
+    description.container = {{0, 0, 0}, {1, 1, 1}};
+    description.cameraEye = Vec3d(0.5, 1.4, 2.2);
+    const TracingScene scene(description);
+    const int width = 24, height = 16;
+    const PinholeCamera camera =
+        testing::lookAt(Vec3f(description.cameraEye), Vec3f(0.5f, 0.4f, 0.5f), width, height);
+    const WaterLook look;
+    const auto all = traceWaterImage(Backend::Cpu, scene, look, camera, width, height, 16);
+    const auto first = traceWaterImage(Backend::Cpu, scene, look, camera, width, height, 5);
+    const auto rest = traceWaterImage(Backend::Cpu, scene, look, camera, width, height, 11, 5);
+    const auto other = traceWaterImage(Backend::Cpu, scene, look, camera, width, height, 11, 7);
+    double worst = 0, shifted = 0;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            const double sum = (5.0 * first[i][c] + 11.0 * rest[i][c]) / 16.0;
+            worst = std::max(worst, std::abs(sum - all[i][c]) / std::max(0.05, double(all[i][c])));
+            shifted = std::max(shifted, std::abs(double(other[i][c] - rest[i][c])));
+        }
+    }
+    EXPECT_LT(worst, 1e-5);
+    EXPECT_GT(shifted, 1e-3);  // other paths are other random numbers
 }
 
 }  // namespace

@@ -13,12 +13,12 @@ namespace weir {
 #if defined(WEIR_HAS_CUDA)
 std::vector<Vec3f> traceWaterImageCuda(const TracingScene& scene, const WaterLook& look,
                                        const PinholeCamera& camera, int width, int height,
-                                       int samples);  // water_renderer_cuda.cu
+                                       int samples, int firstSample);  // water_renderer_cuda.cu
 #endif
 
 std::vector<Vec3f> traceWaterImage(Backend backend, const TracingScene& scene,
                                    const WaterLook& look, const PinholeCamera& camera, int width,
-                                   int height, int samples) {
+                                   int height, int samples, int firstSample) {
     if (width < 1 || height < 1 || samples < 1) {
         throw std::invalid_argument("water image of " + std::to_string(width) + " x " +
                                     std::to_string(height) + " pixels, " + std::to_string(samples) +
@@ -26,7 +26,7 @@ std::vector<Vec3f> traceWaterImage(Backend backend, const TracingScene& scene,
     }
     if (backend == Backend::Cuda) {
 #if defined(WEIR_HAS_CUDA)
-        return traceWaterImageCuda(scene, look, camera, width, height, samples);
+        return traceWaterImageCuda(scene, look, camera, width, height, samples, firstSample);
 #else
         throw std::invalid_argument("the water look on cuda: this weir was built without CUDA");
 #endif
@@ -38,7 +38,7 @@ std::vector<Vec3f> traceWaterImage(Backend backend, const TracingScene& scene,
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             image[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
-                tracePixel(view, look, camera, width, height, x, y, samples);
+                tracePixel(view, look, camera, width, height, x, y, samples, firstSample);
         }
     }
     return image;

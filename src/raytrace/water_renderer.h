@@ -14,10 +14,12 @@ namespace weir {
 
 // Linear radiance of width x height pixels (rows from the top), the mean of `samples` paths per
 // pixel. The same pixels on either backend up to float rounding (the random numbers are a
-// function of pixel and sample). Throws std::invalid_argument for sizes or samples < 1.
+// function of pixel and sample). The paths are those numbered firstSample on: images of paths
+// 0..a-1 and a..a+b-1, weighted by a and b, make the image of a+b paths (motion blur traces
+// its time slices so). Throws std::invalid_argument for sizes or samples < 1.
 std::vector<Vec3f> traceWaterImage(Backend backend, const TracingScene& scene,
                                    const WaterLook& look, const PinholeCamera& camera, int width,
-                                   int height, int samples);
+                                   int height, int samples, int firstSample = 0);
 
 // Exposure, the ACES filmic curve (Narkowicz 2015's fit: highlights roll off instead of clipping)
 // and the sRGB transfer function: 3 bytes per pixel.

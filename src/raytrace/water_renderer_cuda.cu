@@ -9,12 +9,13 @@ namespace {
 
 // 16 x 8 pixels per block: neighbouring pixels' rays take similar paths through the hierarchy.
 __global__ void tracePixelsKernel(TracingSceneView scene, WaterLook look, PinholeCamera camera,
-                                  int width, int height, int samples, Vec3f* image) {
+                                  int width, int height, int samples, int firstSample,
+                                  Vec3f* image) {
     const int x = int(blockIdx.x * blockDim.x + threadIdx.x);
     const int y = int(blockIdx.y * blockDim.y + threadIdx.y);
     if (x < width && y < height) {
         image[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
-            tracePixel(scene, look, camera, width, height, x, y, samples);
+            tracePixel(scene, look, camera, width, height, x, y, samples, firstSample);
     }
 }
 
@@ -32,7 +33,7 @@ DeviceBuffer<T> deviceCopy(const std::vector<T>& host) {
 
 std::vector<Vec3f> traceWaterImageCuda(const TracingScene& scene, const WaterLook& look,
                                        const PinholeCamera& camera, int width, int height,
-                                       int samples) {
+                                       int samples, int firstSample) {
     const DeviceBuffer<BvhNode> nodes = deviceCopy(scene.bvh().nodes());
     const DeviceBuffer<BvhTriangle> triangles = deviceCopy(scene.bvh().triangles());
     const DeviceBuffer<TriangleShading> shading = deviceCopy(scene.shading());
@@ -45,7 +46,8 @@ std::vector<Vec3f> traceWaterImageCuda(const TracingScene& scene, const WaterLoo
     DeviceBuffer<Vec3f> image(pixels);
     const dim3 block(16, 8);
     const dim3 grid(unsigned((width + 15) / 16), unsigned((height + 7) / 8));
-    tracePixelsKernel<<<grid, block>>>(view, look, camera, width, height, samples, image.data());
+    tracePixelsKernel<<<grid, block>>>(view, look, camera, width, height, samples, firstSample,
+                                       image.data());
     WEIR_CUDA_CHECK(cudaGetLastError());
     std::vector<Vec3f> host(pixels);
     WEIR_CUDA_CHECK(
