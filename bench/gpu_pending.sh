@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
-# What the 2026-12-04 session (lent no GPU) left to run on a GPU, in parts (PARTS, default all):
+# What is left to run on a GPU, in parts (PARTS, default all). Updated 2026-12-05, after a session
+# that ran the build, the tests, the live look's benchmark and five of the seven 1M sweep scenes:
 #   build    weir, weir_tests, weir_water_view_bench (Release, sm_90) into build-gpu
-#   test     every CUDA test (the live water look's LbvhCuda.* and InteractiveWaterCuda.* among
-#            them, and CudaPeriodic.AgreesWithCpu/Dfsphdense in its new form: never run yet)
-#   live     issue 19's target: weir_water_view_bench at 1M (30 frames/s at 1280 x 720 with one
-#            step a frame), and the water look offline: `weir render --look water` timed on a
-#            1M dam-break frame at 32 paths per pixel
-#   sweep    issue 14: the delta-SPH stability sweep at 1M, h = 3 d, for the seven scenes not yet
-#            run there (SWEEP_SCENES), then on the simple walls at 100k (WEIR_SWEEP_SIMPLE_DELTA;
-#            27 cases: SIMPLE_RATIOS=1.5 etc. splits them over calls of 10 minutes)
+#   test     every CUDA test (all 33 passed at fcc5913; run again after CUDA changes: the water
+#            look's path offset for motion blur, 168b55e, has not run on a GPU)
+#   live     weir_water_view_bench at 1M (99 frames/s at fcc5913), then `weir render --look water`
+#            timed on a 1M frame; this needs a weir built with rendering: run bench/gpu_render.sh
+#            with build-kit/weir and .gl/ carried (see its header) for the offline timings
+#   sweep    issue 14: the delta-SPH stability sweep at 1M, h = 3 d, for the scenes not yet run
+#            there (SWEEP_SCENES: viscous_pour and piston_wave_maker; hose_filling_glass alone took
+#            288 s), then the simple walls at 100k (WEIR_SWEEP_SIMPLE_DELTA; 27 cases:
+#            SIMPLE_RATIOS=1.5 etc. splits them over calls of 10 minutes)
 # Results under $OUT (default gpu-out). Usage: PARTS="build test live" bash bench/gpu_pending.sh
 set -uo pipefail
 out=$(realpath -m "${OUT:-gpu-out}")
@@ -46,7 +48,7 @@ if has live; then
     cp /tmp/dam1m/water256/frame_00018.png "$out/dam_break_1m_water.png" 2>/dev/null
 fi
 if has sweep; then
-    scenes=${SWEEP_SCENES:-geyser splash_on_sphere tsunami_on_step viscous_pour floating_boxes hose_filling_glass piston_wave_maker}
+    scenes=${SWEEP_SCENES:-viscous_pour piston_wave_maker}
     filter=$(for s in $scenes; do printf 'ShippedScenes*/%s*:' "$s"; done)
     WEIR_SWEEP_BACKEND=cuda WEIR_SWEEP_SIZES=1000000 WEIR_SWEEP_RATIOS=3 WEIR_SWEEP_MODELS=delta-sph \
         timeout "${SWEEP_TIMEOUT:-560}" ./build-gpu/weir_tests --gtest_filter="${filter%:}" \
