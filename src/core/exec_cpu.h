@@ -108,6 +108,19 @@ class CpuExec {
     }
     void synchronize() const {}
 
+    // Runs body() until *flag (set by body's own work) is non-zero, at most maxRounds times.
+    // firstCheck: rounds before the flag is first read (the GPU's reads cost a round trip each;
+    // here they are free, so every round is checked).
+    template <class Body>
+    void repeatUntilSet(const int* flag, int maxRounds, int /*firstCheck*/, Body&& body) const {
+        for (int round = 0; round < maxRounds; ++round) {
+            body();
+            if (*flag != 0) {
+                return;
+            }
+        }
+    }
+
     // Stage timing: the CPU is synchronous, so a steady clock around the stage is exact.
     void stageBegin(const char* stage);
     void stageEnd(const char* stage);

@@ -34,6 +34,81 @@ CudaExec::~CudaExec() {
     if (stream_ != nullptr) {
         cudaStreamDestroy(stream_);
     }
+    if (loopStream_ != nullptr) {
+        cudaStreamDestroy(loopStream_);
+    }
+}
+
+namespace {
+
+// The last kernel of a conditional WHILE node's body: loop again while the flag is clear.
+__global__ void setLoopCondition(cudaGraphConditionalHandle handle, const int* flag) {
+    cudaGraphSetConditional(handle, *flag == 0 ? 1u : 0u);
+}
+
+}  // namespace
+
+bool CudaExec::capturing() const {
+    cudaStreamCaptureStatus status = cudaStreamCaptureStatusNone;
+    WEIR_CUDA_CHECK(cudaStreamIsCapturing(stream_, &status));
+    return status == cudaStreamCaptureStatusActive;
+}
+
+bool CudaExec::readFlag(const int* flag) {
+    int value = 0;
+    copyAndWait(&value, flag, sizeof(int), cudaMemcpyDeviceToHost);
+    return value != 0;
+}
+
+cudaGraphConditionalHandle CudaExec::beginLoopBody() {
+    WEIR_REQUIRE(outerStream_ == nullptr, "a device loop inside another one's capture");
+    cudaStreamCaptureStatus status = cudaStreamCaptureStatusNone;
+    cudaGraph_t graph = nullptr;
+    const cudaGraphNode_t* dependencies = nullptr;
+    const cudaGraphEdgeData* edges = nullptr;
+    std::size_t count = 0;
+    WEIR_CUDA_CHECK(
+        cudaStreamGetCaptureInfo(stream_, &status, nullptr, &graph, &dependencies, &edges, &count));
+    cudaGraphConditionalHandle handle{};
+    // Default 1 at every launch of the graph: the body runs at least once, then its last kernel
+    // decides.
+    WEIR_CUDA_CHECK(
+        cudaGraphConditionalHandleCreate(&handle, graph, 1, cudaGraphCondAssignDefault));
+    cudaGraphNodeParams params{};
+    params.type = cudaGraphNodeTypeConditional;
+    params.conditional.handle = handle;
+    params.conditional.type = cudaGraphCondTypeWhile;
+    params.conditional.size = 1;
+    cudaGraphNode_t node = nullptr;
+    // Full dependencies on what came before (no programmatic edge into a conditional node).
+    WEIR_CUDA_CHECK(cudaGraphAddNode(&node, graph, dependencies, nullptr, count, &params));
+    WEIR_CUDA_CHECK(cudaStreamUpdateCaptureDependencies(stream_, &node, nullptr, 1,
+                                                        cudaStreamSetCaptureDependencies));
+    if (loopStream_ == nullptr) {
+        WEIR_CUDA_CHECK(cudaStreamCreateWithFlags(&loopStream_, cudaStreamNonBlocking));
+    }
+    WEIR_CUDA_CHECK(cudaStreamBeginCaptureToGraph(loopStream_, params.conditional.phGraph_out[0],
+                                                  nullptr, nullptr, 0,
+                                                  cudaStreamCaptureModeThreadLocal));
+    outerStream_ = stream_;
+    stream_ = loopStream_;
+    return handle;
+}
+
+void CudaExec::endLoopBody(cudaGraphConditionalHandle handle, const int* flag) {
+    setLoopCondition<<<1, 1, 0, stream_>>>(handle, flag);
+    WEIR_CUDA_CHECK(cudaGetLastError());
+    cudaGraph_t body = nullptr;
+    stream_ = outerStream_;
+    outerStream_ = nullptr;
+    WEIR_CUDA_CHECK(cudaStreamEndCapture(loopStream_, &body));  // the node's own graph
+}
+
+void CudaExec::abandonLoopBody() {
+    cudaGraph_t body = nullptr;
+    cudaStreamEndCapture(loopStream_, &body);
+    stream_ = outerStream_;
+    outerStream_ = nullptr;
 }
 
 namespace {

@@ -235,6 +235,38 @@ class CudaExec {
     }
     void synchronize() { WEIR_CUDA_CHECK(cudaStreamSynchronize(stream_)); }
 
+    // Runs body() until the device int *flag (set by body's own kernels) is non-zero, at most
+    // maxRounds times; body's kernels must do nothing once it is set. Run directly, the host
+    // reads the flag after round firstCheck and every second round from there (a round trip
+    // each). Inside a graph capture the loop becomes a conditional WHILE node (CUDA 12.4): body is
+    // recorded once into the node's graph, which ends by setting the node's condition from *flag
+    // on the device, so a replayed graph loops with no host round trip. Body's kernels are then
+    // launched without programmatic dependent launch.
+    template <class Body>
+    void repeatUntilSet(const int* flag, int maxRounds, int firstCheck, Body&& body) {
+        if (!capturing()) {
+            for (int round = 0; round < maxRounds; ++round) {
+                body();
+                if (round >= firstCheck && (round - firstCheck) % 2 == 0 && readFlag(flag)) {
+                    return;
+                }
+            }
+            return;
+        }
+        const cudaGraphConditionalHandle handle = beginLoopBody();
+        const bool programmatic = programmaticLaunch;
+        programmaticLaunch = false;
+        try {
+            body();
+        } catch (...) {
+            programmaticLaunch = programmatic;
+            abandonLoopBody();
+            throw;
+        }
+        programmaticLaunch = programmatic;
+        endLoopBody(handle, flag);
+    }
+
     // Records everything body() queues on this backend's stream into graph (nothing runs).
     template <class Body>
     void capture(Graph& graph, Body&& body) {
@@ -276,6 +308,17 @@ class CudaExec {
     cudaStream_t stream() const { return stream_; }
 
    private:
+    // Whether this backend's stream is recording a graph.
+    bool capturing() const;
+    // *flag, read back (a round trip).
+    bool readFlag(const int* flag);
+    // repeatUntilSet inside a capture: adds the WHILE node after what was recorded so far and
+    // records on a second stream into its body until endLoopBody, which adds the kernel that
+    // sets the condition and returns to the outer capture.
+    cudaGraphConditionalHandle beginLoopBody();
+    void endLoopBody(cudaGraphConditionalHandle handle, const int* flag);
+    void abandonLoopBody();
+
     // One cudaMemcpyAsync on the stream, then waits for it.
     void copyAndWait(void* dst, const void* src, std::size_t bytes, cudaMemcpyKind kind);
     cudaEvent_t takeEvent();
@@ -283,6 +326,8 @@ class CudaExec {
     void deviceInclusiveScan(const T* in, T* out, Index n);
 
     cudaStream_t stream_ = nullptr;
+    cudaStream_t outerStream_ = nullptr;  // the capturing stream while a loop body is recorded
+    cudaStream_t loopStream_ = nullptr;   // where loop bodies are recorded
     int multiprocessors_ = 1;
     // Scratch of CUB's reductions of `bytes`, grown outside graph capture only.
     unsigned char* reduceScratch(std::size_t bytes);

@@ -1,4 +1,4 @@
-// The CPU backend's reductions: sums and maxima into the backend's memory.
+// The CPU backend's reductions (sums and maxima into the backend's memory) and its loops.
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -40,6 +40,29 @@ TEST(CpuReductions, EmptyRangesGiveTheIdentity) {
     exec.max(static_cast<const float*>(nullptr), 0, &m);
     EXPECT_EQ(s, 0.0f);
     EXPECT_EQ(m, std::numeric_limits<float>::lowest());
+}
+
+// A solver's loop in miniature: the body sets the flag at its seventh round, and the loop stops
+// there; a flag never set stops at maxRounds.
+TEST(CpuLoops, RunUntilTheFlagIsSetOrTheRoundsRunOut) {
+    CpuExec exec;
+    int count = 0, flag = 0, limit = 7;
+    auto body = [&] {
+        exec.forEach(1, [&](Index) {
+            if (flag == 0) {
+                ++count;
+                flag = count >= limit ? 1 : 0;
+            }
+        });
+    };
+    exec.repeatUntilSet(&flag, 100, 2, body);
+    EXPECT_EQ(count, 7);
+    count = 0;
+    flag = 0;
+    limit = 1000;
+    exec.repeatUntilSet(&flag, 5, 2, body);
+    EXPECT_EQ(count, 5);
+    EXPECT_EQ(flag, 0);
 }
 
 }  // namespace

@@ -5,7 +5,8 @@
 // to bring the density predicted at the step's end back to rho0); the move. Each solve iterates
 // Jacobi sweeps (dfsph_stages.h) until the mean error is under its tolerance; the test runs on
 // the backend (a reduction and a one-thread check), every sweep's stages return at once after
-// it, and the host only polls a flag to stop launching sweeps.
+// it, and the host only polls a flag to stop launching sweeps; in a step replayed as a CUDA graph
+// the graph loops by itself (a conditional node), with no host round trip.
 #pragma once
 
 #include <cstddef>
@@ -99,8 +100,13 @@ class Dfsph final : public PressureSolver<Exec> {
         }
     }
 
-    // The host polls the solves' flags between sweeps: a step is not replayed as a graph.
-    bool capturable() const override { return false; }
+    // The solves loop on the device inside a replayed graph (Exec::repeatUntilSet);
+    // WEIR_DFSPH_GRAPH=0 runs every step directly, the host polling the solves' flags (for
+    // benchmarks that compare).
+    bool capturable() const override {
+        const char* setting = std::getenv("WEIR_DFSPH_GRAPH");
+        return !(setting != nullptr && std::string(setting) == "0");
+    }
 
     std::size_t bytesHeld() const override {
         return list_.bytesHeld() +
@@ -207,7 +213,8 @@ class Dfsph final : public PressureSolver<Exec> {
 
     // One solve on velocities `vel` (in place): sweeps until the backend's check says done, at
     // most `sweeps` of them (default: the scene's limit). The host reads the flag after each
-    // sweep on the CPU (free) and every second one on the GPU (a round trip each).
+    // sweep on the CPU (free) and every second one on the GPU (a round trip each); a captured
+    // step loops on the device (Exec::repeatUntilSet).
     template <class Neighbours>
     void solve(Context& s, const Neighbours& nb, Real4* vel, bool divergence, int sweeps = 0) {
         const SphParams params = s.params;
@@ -242,7 +249,9 @@ class Dfsph final : public PressureSolver<Exec> {
             });
             copyVelocitiesToGhosts(s, vel);
         }
-        for (int sweep = 0; sweep <= maximum; ++sweep) {
+        // Sweeps until dfsphCheck sets the monitor's flag (at the latest after `maximum`): on the
+        // device, by a loop the host polls or, in a captured step, by the graph itself.
+        s.exec.repeatUntilSet(&monitor->done, maximum + 1, minimum, [&] {
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
                 dfsphPredictAt(i, pv, nb, params, vel, factor, divergence, clock, monitor,
                                kappaOverRho, error, accumulated, interior, relaxation);
@@ -255,11 +264,7 @@ class Dfsph final : public PressureSolver<Exec> {
                 dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor);
             });
             copyVelocitiesToGhosts(s, vel);
-            const bool poll = !Exec::isDevice || (sweep >= minimum && sweep % 2 == 0);
-            if (poll && s.exec.readOne(monitor_, divergence ? 1 : 0).done != 0) {
-                break;
-            }
-        }
+        });
         s.exec.stageEnd(divergence ? "divergence" : "pressure");
     }
 
