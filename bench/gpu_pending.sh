@@ -1,9 +1,15 @@
 #!/usr/bin/env bash
-# What is left to run on a GPU, in parts (PARTS, default all). Updated 2026-12-05, after a session
-# that ran the build, the tests, the live look's benchmark and five of the seven 1M sweep scenes:
+# What is left to run on a GPU, in parts (PARTS, default all). Updated 2026-12-05 (second session,
+# no GPU lent; the first session that day ran the build, the tests, the live look's benchmark and
+# five of the seven 1M sweep scenes):
 #   build    weir, weir_tests, weir_water_view_bench (Release, sm_90) into build-gpu
-#   test     every CUDA test (all 33 passed at fcc5913; run again after CUDA changes: the water
-#            look's path offset for motion blur, 168b55e, has not run on a GPU)
+#   test     every CUDA test (all 33 passed at fcc5913). Not yet run on a GPU: the water look's
+#            path offset for motion blur (168b55e), the device loop of a captured graph
+#            (CudaLoops.*) and DFSPH's graph replay (DfsphCuda.GraphReplayGivesTheStepsRunOneAtATime,
+#            c09466a and after)
+#   dfsph    DFSPH's step replayed as a graph (WEIR_DFSPH_GRAPH=1, opt-in until this has run)
+#            against the host-polled step, weir bench at 100k and 1M with WCSPH beside; if the
+#            graph wins and the test passes, make it the default (solver/dfsph/dfsph.h capturable)
 #   live     weir_water_view_bench at 1M (99 frames/s at fcc5913), then `weir render --look water`
 #            timed on a 1M frame; this needs a weir built with rendering: run bench/gpu_render.sh
 #            with build-kit/weir and .gl/ carried (see its header) for the offline timings
@@ -11,10 +17,15 @@
 #            there (SWEEP_SCENES: viscous_pour and piston_wave_maker; hose_filling_glass alone took
 #            288 s), then the simple walls at 100k (WEIR_SWEEP_SIMPLE_DELTA; 27 cases:
 #            SIMPLE_RATIOS=1.5 etc. splits them over calls of 10 minutes)
+# Parts not in the default set (a call of their own each):
+#   spray    issue 15: where the 10M DFSPH dam break's 7-11 m/s spray comes from (it sets the dt):
+#            the run to 0.3 s with a ply frame every 0.01 s, then bench/dfsph_spray.py
+#   largest  issues 15 and 17: the largest runs with today's physics: weir bench with delta-SPH
+#            at 1B (700M if 1B does not fit) and DFSPH at 500M, 2 timed steps each, no settling
 # Results under $OUT (default gpu-out). Usage: PARTS="build test live" bash bench/gpu_pending.sh
 set -uo pipefail
 out=$(realpath -m "${OUT:-gpu-out}")
-parts=" ${PARTS:-build test live sweep} "
+parts=" ${PARTS:-build test dfsph live sweep} "
 has() { [[ "$parts" == *" $1 "* ]]; }
 mkdir -p "$out"
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee "$out/gpu.txt"
@@ -31,6 +42,17 @@ if has test; then
         --gtest_filter="${TEST_FILTER:-*Cuda*:*cuda*:*Gpu*}" >"$out/gpu-tests.log" 2>&1
     echo "tests exit $?"
     grep -E "^\[ +(FAILED|SKIPPED) |Failure|PASSED|FAILED TEST" "$out/gpu-tests.log" | head -40
+fi
+if has dfsph; then
+    for g in 1 0; do
+        WEIR_DFSPH_GRAPH=$g timeout 150 ./build-gpu/weir bench dam_break --model delta-sph \
+            --solver dfsph --sizes 100k,1M --backends cuda-dense --no-plot --no-render \
+            -o "$out/dfsph-graph$g" >"$out/dfsph-graph$g.log" 2>&1
+        echo "dfsph bench, graph $g: exit $?"; grep -E "cuda-dense:" "$out/dfsph-graph$g.log"
+    done
+    timeout 150 ./build-gpu/weir bench dam_break --model delta-sph --sizes 100k,1M \
+        --backends cuda-dense --no-plot --no-render -o "$out/wcsph" >"$out/wcsph.log" 2>&1
+    echo "wcsph bench: exit $?"; grep -E "cuda-dense:" "$out/wcsph.log"
 fi
 if has live; then
     timeout 300 ./build-gpu/weir_water_view_bench dam_break --particles 1M --frames 100 \
@@ -59,6 +81,36 @@ if has sweep; then
         timeout "${SWEEP_TIMEOUT:-560}" ./build-gpu/weir_tests --gtest_filter='ShippedScenes*_simple' \
         >"$out/sweep-simple-100k.log" 2>&1
     echo "simple-walls sweep exit $?"; grep -E "^sweep |FAILED  \]" "$out/sweep-simple-100k.log" | cut -c1-220
+fi
+if has spray; then
+    python3 - <<'PY'
+import json
+s = json.load(open("scenes/dam_break.json"))
+s["time"] = {"duration": 0.3, "frameRate": 100}
+json.dump(s, open("/tmp/dam_break_100fps.json", "w"))
+PY
+    timeout 300 ./build-gpu/weir run /tmp/dam_break_100fps.json --solver dfsph --particles 10M \
+        --format ply --overwrite -o /tmp/spray10m >"$out/spray10m-run.log" 2>&1
+    echo "spray run: exit $?"; grep -E "particles on|^weir: done" "$out/spray10m-run.log"
+    n=$(grep -oE "[0-9]+ particles on" "$out/spray10m-run.log" | grep -oE "^[0-9]+")
+    spacing=$(python3 -c "print((0.4 * 0.6 * 0.6 / $n) ** (1 / 3))")  # the column's volume
+    timeout 200 python3 bench/dfsph_spray.py /tmp/spray10m --box 0 0 0 1.6 1 0.6 \
+        --spacing "$spacing" >"$out/spray10m.txt" 2>&1
+    echo "spray analysis: exit $?"; head -n 60 "$out/spray10m.txt"
+fi
+if has largest; then
+    big() {  # label, seconds, bench arguments
+        local label=$1 limit=$2
+        shift 2
+        timeout "$limit" ./build-gpu/weir bench dam_break --backends cuda-dense --steps 2 \
+            --warmup 1 --settle 0 --budget 400 --no-plot --no-render -o "$out/$label" "$@" \
+            >"$out/$label.log" 2>&1
+        echo "$label: exit $?"; grep -E "cuda-dense:|rror|memory" "$out/$label.log" | head -5
+    }
+    big largest-delta-1B 230 --model delta-sph --sizes 1B
+    grep -q "cuda-dense:" "$out/largest-delta-1B.log" ||
+        big largest-delta-700M 200 --model delta-sph --sizes 700M
+    big largest-dfsph-500M 250 --model delta-sph --solver dfsph --sizes 500M
 fi
 nvidia-smi -q -d PERFORMANCE | grep -A12 "Clocks Event Reasons" | grep -v "Not Active" >"$out/throttle.txt"
 cat "$out/throttle.txt"

@@ -100,12 +100,12 @@ class Dfsph final : public PressureSolver<Exec> {
         }
     }
 
-    // The solves loop on the device inside a replayed graph (Exec::repeatUntilSet);
-    // WEIR_DFSPH_GRAPH=0 runs every step directly, the host polling the solves' flags (for
-    // benchmarks that compare).
+    // With WEIR_DFSPH_GRAPH=1 a step may be replayed as a CUDA graph whose solves loop on the
+    // device (Exec::repeatUntilSet's conditional node). Off by default until it has run on a GPU
+    // (written 2026-12-05 with no GPU lent): the host polls the solves' flags between sweeps.
     bool capturable() const override {
         const char* setting = std::getenv("WEIR_DFSPH_GRAPH");
-        return !(setting != nullptr && std::string(setting) == "0");
+        return setting != nullptr && std::string(setting) == "1";
     }
 
     std::size_t bytesHeld() const override {
