@@ -53,6 +53,13 @@ struct WendlandKernel {
         return k;
     }
 
+    // The same kernel with its gradient divided by `latticeMoment` as well.
+    WendlandKernel withGradientDividedBy(Real latticeMoment) const {
+        WendlandKernel k = *this;
+        k.grad = grad / latticeMoment;
+        return k;
+    }
+
     // W at distance r (0 <= r; zero outside the support).
     WEIR_HD Real value(Real r) const {
         const Real q = r * invH;

@@ -64,7 +64,11 @@ struct SphParams {
 
     // The delta-SPH model (FluidModel::DeltaSph; physics/delta_sph.h).
     FluidModel model = FluidModel::Paper;
-    WendlandKernel wendland;       // with the lattice-moment correction of its gradient
+    WendlandKernel wendland;  // with the lattice-moment correction of its gradient
+    // 1, or where `wendland` keeps the raw gradient (DFSPH's solves, whose prediction must be
+    // that of the summed density), the raw gradient's lattice moment: the viscous forces and the
+    // reported pressure then apply the correction themselves.
+    Real rawGradientMoment = 1;
     Real dynamicViscosity = 0;     // mu, the fluid's own, Pa s (Morris et al. 1997)
     Real viscositySoftening = 0;   // eta^2 = 0.01 (h/2)^2 of Morris's operator, m^2
     Real artificialViscosity = 0;  // alpha c (h/2), m^2/s (Monaghan 1992; approaching pairs)

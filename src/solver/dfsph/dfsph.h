@@ -200,7 +200,7 @@ class Dfsph final : public PressureSolver<Exec> {
     void nonPressure(Context& s, const Neighbours& nb) {
         s.exec.stageBegin("force");
         const ParticleView pv = view(s);
-        const SphParams params = s.params;
+        const SphParams params = dfsphForceParams(s.params);
         const Real4* state = wallState_.size() > 0 ? wallState_.data() : nullptr;
         StepClock* clock = s.clock;
         Real4* predicted = s.store.nextVel();
@@ -274,7 +274,9 @@ class Dfsph final : public PressureSolver<Exec> {
     // rho_i, so a step's pressure impulse p dt is rho (K dt + K_v), K the density solve's summed k
     // and K_v the divergence solve's sum (kept as k dt). The divergence solve removes what the last
     // step left, so one step's share would depend on how short the step that lands on a frame is;
-    // the frame's mean does not.
+    // the frame's mean does not. Reported times the raw gradient's lattice moment: the pressure
+    // that pushes as hard through the corrected gradient, the one that differentiates a linear
+    // pressure exactly on the lattice (physics/kernels.h), i.e. the fluid's pressure.
     void keepPressureById(Context& s) {
         const Index n = s.store.count();
         const Index owned = n - s.store.ghostCount();
@@ -290,13 +292,14 @@ class Dfsph final : public PressureSolver<Exec> {
         const Real* density = warm_[0].data();
         const Real* divergence = warm_[1].data();
         const bool divergenceSolved = s.params.divergenceTolerance > Real(0);
+        const Real moment = s.params.rawGradientMoment;
         const StepClock* clock = s.clock;
         Real* impulse = impulseById_.data();
         s.exec.forEach(n, [=] WEIR_HD(Index i) {
             if (!isGhost(pos[i]) && id[i] >= 0 && id[i] < owned) {
                 const Real k =
                     density[i] * clock->dt + (divergenceSolved ? divergence[i] : Real(0));
-                impulse[id[i]] += k * vel[i].w;
+                impulse[id[i]] += k * vel[i].w * moment;
             }
         });
         Real* time = impulseTime_.data();
