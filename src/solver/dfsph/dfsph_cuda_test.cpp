@@ -15,15 +15,20 @@ namespace {
 
 using namespace weir::testing;
 
+// A small DFSPH dam break: a column 0.2 m wide and 0.3 m high in a slab 0.1 m deep, d = 12.5 mm.
+Scene smallDamBreak() {
+    return parseScene(R"({"solver": "dfsph", "fluid": {"preset": "water"},
+        "container": {"min": [0, 0, 0], "max": [0.6, 0.4, 0.1]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.3, 0.1]}],
+        "particles": {"spacing": 0.0125}})",
+                      "<test dfsph cuda>");
+}
+
 TEST(DfsphCuda, AgreesWithCpu) {
     if (!cudaDeviceAvailable()) {
         GTEST_SKIP() << "no CUDA device visible";
     }
-    const Scene scene = parseScene(R"({"solver": "dfsph", "fluid": {"preset": "water"},
-        "container": {"min": [0, 0, 0], "max": [0.6, 0.4, 0.1]},
-        "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.3, 0.1]}],
-        "particles": {"spacing": 0.0125}})",
-                                   "<test dfsph cuda>");
+    const Scene scene = smallDamBreak();
     SetupReport report;
     auto cpu = makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, &report));
     auto gpu = makeSimulation(Backend::Cuda, NeighbourMode::Auto, buildSetup(scene, {}, nullptr));
@@ -63,11 +68,7 @@ TEST(DfsphCuda, GraphReplayGivesTheStepsRunOneAtATime) {
     if (!cudaDeviceAvailable()) {
         GTEST_SKIP() << "no CUDA device visible";
     }
-    const Scene scene = parseScene(R"({"solver": "dfsph", "fluid": {"preset": "water"},
-        "container": {"min": [0, 0, 0], "max": [0.6, 0.4, 0.1]},
-        "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.3, 0.1]}],
-        "particles": {"spacing": 0.0125}})",
-                                   "<test dfsph graph>");
+    const Scene scene = smallDamBreak();
     SetupReport report;
     auto replayed =
         makeSimulation(Backend::Cuda, NeighbourMode::Auto, buildSetup(scene, {}, &report));
