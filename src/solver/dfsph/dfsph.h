@@ -33,7 +33,7 @@ class Dfsph final : public PressureSolver<Exec> {
         "divergence-free SPH (Bender & Koschier 2017: incompressible, a time step set by the "
         "flow's speed, density held within 0.01-0.1%)";
 
-    explicit Dfsph(const SphParams&) {}
+    explicit Dfsph(const SphParams& params) : pressureScale_(params.rawGradientMoment) {}
 
     void step(Context& s) override {
         StepClock* clock = s.clock;
@@ -274,9 +274,7 @@ class Dfsph final : public PressureSolver<Exec> {
     // rho_i, so a step's pressure impulse p dt is rho (K dt + K_v), K the density solve's summed k
     // and K_v the divergence solve's sum (kept as k dt). The divergence solve removes what the last
     // step left, so one step's share would depend on how short the step that lands on a frame is;
-    // the frame's mean does not. Reported times the raw gradient's lattice moment: the pressure
-    // that pushes as hard through the corrected gradient, the one that differentiates a linear
-    // pressure exactly on the lattice (physics/kernels.h), i.e. the fluid's pressure.
+    // the frame's mean does not.
     void keepPressureById(Context& s) {
         const Index n = s.store.count();
         const Index owned = n - s.store.ghostCount();
@@ -292,14 +290,13 @@ class Dfsph final : public PressureSolver<Exec> {
         const Real* density = warm_[0].data();
         const Real* divergence = warm_[1].data();
         const bool divergenceSolved = s.params.divergenceTolerance > Real(0);
-        const Real moment = s.params.rawGradientMoment;
         const StepClock* clock = s.clock;
         Real* impulse = impulseById_.data();
         s.exec.forEach(n, [=] WEIR_HD(Index i) {
             if (!isGhost(pos[i]) && id[i] >= 0 && id[i] < owned) {
                 const Real k =
                     density[i] * clock->dt + (divergenceSolved ? divergence[i] : Real(0));
-                impulse[id[i]] += k * vel[i].w * moment;
+                impulse[id[i]] += k * vel[i].w;
             }
         });
         Real* time = impulseTime_.data();
@@ -308,7 +305,9 @@ class Dfsph final : public PressureSolver<Exec> {
 
     // The mean since the last time it was asked for, kept on the host until a step follows, so
     // that every download between two steps (the frame, the renderer, a script's arrays) gets
-    // the same values.
+    // the same values. Reported times the raw gradient's lattice moment (pressureScale_): the
+    // pressure that pushes as hard through the corrected gradient, the one that differentiates a
+    // linear pressure exactly on the lattice (physics/kernels.h), i.e. the fluid's pressure.
     bool solvedPressure(Exec& exec, std::vector<Real>& byId) override {
         if (impulseTime_.size() == 0) {
             return false;
@@ -318,8 +317,9 @@ class Dfsph final : public PressureSolver<Exec> {
         if (time > Real(0)) {
             lastPressure_.resize(impulseById_.size());
             exec.download(impulseById_, lastPressure_.data(), lastPressure_.size());
+            const Real scale = pressureScale_ / time;
             for (Real& p : lastPressure_) {
-                p /= time;
+                p *= scale;
             }
             clear(exec, impulseById_.data(), Index(impulseById_.size()));
             clear(exec, impulseTime_.data(), 1);
@@ -519,8 +519,9 @@ class Dfsph final : public PressureSolver<Exec> {
     Buffer<Index> owner_;             // periodic: each particle's owner (itself if owned)
     Buffer<Index> indexOfId_;         // periodic: an owned particle's index by its id
     Buffer<Real> warmById_[2];        // periodic: the warm starts by id between steps
-    Buffer<Real> impulseById_;        // per id, the solves' pressure impulse since the last frame
-    Buffer<Real> impulseTime_;        // [0]: the time those impulses span
+    Real pressureScale_;        // the frames' pressure per solved pressure (see solvedPressure)
+    Buffer<Real> impulseById_;  // per id, the solves' pressure impulse since the last frame
+    Buffer<Real> impulseTime_;  // [0]: the time those impulses span
     std::vector<Real> lastPressure_;  // host: the last mean handed out, by id
     NeighbourList<Exec> list_;        // this step's neighbours, when listed_
     bool listed_ = false;             // whether the neighbours are listed (memory allowing)
