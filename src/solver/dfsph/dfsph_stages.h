@@ -51,14 +51,17 @@ constexpr int kDfsphDivergenceNeighbours = 20;
 
 // After the grid build: particle i's density by summation over fluid and boundary particles
 // (into vel.w) and its factor alpha_i (0 where it has no neighbour).
+// wallShepardSum (null: no boundary particles): each boundary particle's sum of W over the fluid
+// near it (dfsphWallShepardSumAt), whose stiffness the density solve extrapolates from i's among
+// others (dfsphWallStiffnessAt): the share that comes back to push i is part of the factor.
 template <class Neighbours>
 WEIR_HD inline void dfsphDensityFactorAt(Index i, const ParticleView& pv, const Neighbours& nb,
-                                         const SphParams& p, Real* factor,
-                                         unsigned char* interior) {
+                                         const SphParams& p, Real* factor, unsigned char* interior,
+                                         const Real* wallShepardSum) {
     const Vec3 xi = pv.position(i);
     const Real h2 = p.wendland.h2;
     Real rho = p.mass * p.wendland.value(Real(0));
-    Vec3 gradSum, wallGradSum;
+    Vec3 gradSum, wallGradSum, ownWallPush;
     Real gradSquares = 0;
     int neighbours = 0;
     nb.forEachCandidate(i, [&](Index j) {
@@ -78,22 +81,31 @@ WEIR_HD inline void dfsphDensityFactorAt(Index i, const ParticleView& pv, const 
         forEachBoundaryNeighbour(bv, p, xi, [&](Index b, const Vec3& rVec, Real r2) {
             const Real r = r2 * reciprocalSqrt(r2);
             const Real psi = bv.pos[b].w;
-            rho += psi * p.wendland.value(r);
-            wallGradSum += rVec * (psi * p.wendland.gradientFactor(r));
+            const Real w = p.wendland.value(r);
+            rho += psi * w;
+            const Vec3 g = rVec * (psi * p.wendland.gradientFactor(r));
+            wallGradSum += g;
+            if (wallShepardSum != nullptr && wallShepardSum[b] > Real(0)) {
+                ownWallPush += g * (w / wallShepardSum[b]);
+            }
             ++neighbours;
         });
     }
     pv.vel[i].w = rho;
     interior[i] = neighbours >= kDfsphDivergenceNeighbours ? 1 : 0;
-    // Measured: walls that push by twice i's stiffness (its pressure mirrored, with this factor
-    // made consistent) supported the first step's floor layer better but stirred a tank at rest
-    // ten times more within 0.5 s than walls that push by it once (Akinci et al. 2012, as
-    // SPlisHSPlasH's DFSPH has them).
-    // Floored at half a full neighbourhood's: where the fluid neighbours are few and the walls'
-    // gradient cancels theirs (a particle wedged in a corner) the sum nearly vanishes, and the
-    // stiffness it would give pushes the few neighbours apart at once (measured: a 1M-particle
+    // The walls push i by its own stiffness (Akinci et al. 2012) and, with
+    // WEIR_DFSPH_WALLS=extrapolated, in the density solve by theirs, extrapolated from the fluid
+    // near them: i's share of that (ownWallPush, W_bi over b's Shepard sum) is i's too, and leaving
+    // it out of the factor let the sweeps overshoot where a wall particle sees few fluid particles
+    // (measured: a tank's floor edge blew up in its first step). (Walls that push by twice i's
+    // stiffness instead, the factor made consistent, stirred a tank at rest ten times more within
+    // 0.5 s.) Floored at half a full neighbourhood's: where the fluid neighbours are few and the
+    // walls' gradient cancels theirs (a particle wedged in a corner) the sum nearly vanishes, and
+    // the stiffness it would give pushes the few neighbours apart at once (measured: a 1M-particle
     // dam break compressed past 50% in its second step). A small factor only under-corrects.
-    Real denominator = lengthSquared(gradSum + wallGradSum) + gradSquares;
+    const Vec3 sum = gradSum + wallGradSum;
+    Real denominator =
+        lengthSquared(sum) + gradSquares + dot(ownWallPush, sum) * rho * p.invRestDensity;
     denominator = denominator > p.minFactorDenominator ? denominator : p.minFactorDenominator;
     factor[i] = denominator > Real(0) ? rho / denominator : Real(0);
 }
@@ -279,9 +291,11 @@ WEIR_HD inline void dfsphPredictAt(Index i, const ParticleView& pv, const Neighb
 }
 
 // Before a solve's sweeps, its warm start (Bender & Koschier 2017): the stiffness i's last solve
-// summed to (in the form dfsphPredictAt keeps), whole, applied as a first velocity update; the
-// sum goes on from it. In a steady flow it is the answer, and the sweeps give back what the flow
-// no longer needs. Only inside the fluid (at least kDfsphDivergenceNeighbours neighbours): at a
+// summed to (in the form dfsphPredictAt keeps), times `share`, applied as a first velocity update;
+// the sum goes on from it: whole, so in a steady flow it is the answer, and the sweeps give back
+// what the flow no longer needs. (With WEIR_DFSPH_WALLS=extrapolated, Dfsph keeps the two solves'
+// sums as one: the density solve starts from the whole step's, the divergence solve from
+// nothing.) Only inside the fluid (at least kDfsphDivergenceNeighbours neighbours): at a
 // free surface or in spray the summed density reads light, the sweeps only push, and a warm start
 // would push on for as long as it is carried. (Half of it, only where compressed, as SPlisHSPlasH
 // starts, took 23-32 sweeps a step on a 1M dam break on the H200 against 2: each step rebuilt half
@@ -328,16 +342,79 @@ WEIR_HD inline void dfsphBeginSolve(DfsphMonitor* monitor, const StepClock* cloc
     monitor->iterations = 0;
 }
 
+// Each boundary particle's sum of W over the fluid near it: the denominator of the Shepard means
+// of dfsphWallStiffnessAt, once a step (the positions stay put until the move).
+template <class Neighbours>
+WEIR_HD inline void dfsphWallShepardSumAt(Index b, const ParticleView& pv, const Neighbours& nb,
+                                          const SphParams& p, Real* shepardSum) {
+    const Vec3 xb = pv.boundary.pos[b].xyz();
+    const Real h2 = p.wendland.h2;
+    Real sumW = 0;
+    nb.forEachNearPoint(xb, [&](Index f) {
+        const Real r2 = lengthSquared(xb - pv.position(f));
+        if (r2 < h2) {
+            sumW += p.wendland.value(r2 * reciprocalSqrt(r2 > Real(0) ? r2 : h2));
+        }
+    });
+    shepardSum[b] = sumW;
+}
+
+// With WEIR_DFSPH_WALLS=extrapolated, the density solve's walls push back as the fluid would
+// (Adami et al. 2012's pressure
+// extrapolation, as Band et al. 2018 take it to implicit solvers): boundary particle b's
+// stiffness is the Shepard mean of the stiffness the solve has summed for the fluid near it, plus
+// the hydrostatic part g . (x_b - x_f) (over the lattice moment, as the solves' stiffness is), and
+// never negative (walls do not pull). Along periodic axes no pressure holds the body force, so
+// that part leaves them out. Kept over rho0 in `total` (what the sweeps so far have applied);
+// `change` gets what the next velocity update adds. Once the solve is done, nothing. (Akinci et
+// al. 2012's walls push i by its own stiffness only: the layer by a wall then holds twice its
+// share, and a tank's floor layer read 1.6-1.8 times hydrostatic at every resolution.)
+template <class Neighbours>
+WEIR_HD inline void dfsphWallStiffnessAt(Index b, const ParticleView& pv, const Neighbours& nb,
+                                         const SphParams& p, const Real* summedStiffness,
+                                         const Real* shepardSum, const DfsphMonitor* monitor,
+                                         Real* total, Real* change) {
+    if (monitor->done != 0) {
+        change[b] = Real(0);
+        return;
+    }
+    Real k = 0;
+    if (shepardSum[b] > Real(0)) {
+        const Vec3 xb = pv.boundary.pos[b].xyz();
+        const Real h2 = p.wendland.h2;
+        Real sumK = 0;
+        Vec3 sumR;
+        nb.forEachNearPoint(xb, [&](Index f) {
+            const Vec3 r = xb - pv.position(f);
+            const Real r2 = lengthSquared(r);
+            if (r2 < h2) {
+                const Real w = p.wendland.value(r2 * reciprocalSqrt(r2 > Real(0) ? r2 : h2));
+                sumK += summedStiffness[f] * w;
+                sumR += r * w;
+            }
+        });
+        Vec3 g = p.gravity;
+        g.x = isPeriodic(p, 0) ? Real(0) : g.x;
+        g.y = isPeriodic(p, 1) ? Real(0) : g.y;
+        g.z = isPeriodic(p, 2) ? Real(0) : g.z;
+        k = (sumK + dot(g, sumR) / p.rawGradientMoment) / shepardSum[b];
+        k = k > Real(0) ? k * p.invRestDensity : Real(0);
+    }
+    change[b] = k - total[b];
+    total[b] = k;
+}
+
 // The velocity update of one iteration for particle i: v_i -= dt (sum_j m_j (kappa_i / rho_i +
-// kappa_j / rho_j) grad W_ij + sum_b psi_b kappa_i / rho_i grad W_ib), from each particle's
-// kappa / rho. Velocities are updated in place: this pass reads only positions and the kappa /
-// rho of others. accumulated (if
-// not null) sums each particle's stiffness over the solve's iterations (the next step's warm
-// start).
+// kappa_j / rho_j) grad W_ij + sum_b psi_b (kappa_i / rho_i + kappa_b / rho0) grad W_ib), from
+// each particle's kappa / rho this sweep and, in the density solve, each wall's change of
+// kappa_b / rho0 (wallChange, dfsphWallStiffnessAt; null in the divergence solve, whose walls push
+// by i's own stiffness alone). Velocities are updated in place: this pass reads only positions
+// and the kappa / rho of others.
 template <class Neighbours>
 WEIR_HD inline void dfsphUpdateAt(Index i, const ParticleView& pv, const Neighbours& nb,
                                   const SphParams& p, Real4* vel, const Real* kappaOverRho,
-                                  const StepClock* clock, const DfsphMonitor* monitor) {
+                                  const StepClock* clock, const DfsphMonitor* monitor,
+                                  const Real* wallChange) {
     if (monitor->done != 0) {
         return;
     }
@@ -356,11 +433,12 @@ WEIR_HD inline void dfsphUpdateAt(Index i, const ParticleView& pv, const Neighbo
             }
         }
     });
-    if (p.walls == WallKind::Particles && termI != Real(0)) {
+    if (p.walls == WallKind::Particles && (termI != Real(0) || wallChange != nullptr)) {
         const BoundaryView& bv = pv.boundary;
         forEachBoundaryNeighbour(bv, p, xi, [&](Index b, const Vec3& rVec, Real r2) {
             const Real r = r2 * reciprocalSqrt(r2);
-            acc += rVec * (-bv.pos[b].w * termI * p.wendland.gradientFactor(r));
+            const Real term = termI + (wallChange != nullptr ? wallChange[b] : Real(0));
+            acc += rVec * (-bv.pos[b].w * term * p.wendland.gradientFactor(r));
         });
     }
     vel[i] = Real4::from(v4.xyz() + acc * clock->dt, v4.w);

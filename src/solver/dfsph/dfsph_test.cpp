@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -129,6 +131,69 @@ TEST(Dfsph, TankAtRestHoldsRestDensityAndStaysAtRest) {
     }
     const double slope = (used * syp - sy * sp) / (used * syy - sy * sy);
     EXPECT_NEAR(-slope / (scene.restDensity * g), 1.0, 0.2);
+}
+
+// WEIR_DFSPH_WALLS=extrapolated (experimental): walls that push back as the fluid near them does,
+// one warm start for both solves, the first from the seeded hydrostatic pressure. The same tank
+// as above, 0.3 s: in the last frame every 1 cm layer from the floor layer (the wall layer) to
+// 2 h under the surface within 6% of rho0 g (depth) (measured 2026-12-05: within 4.1%; weir
+// validate's 2%, which it passes at 0.4-1%, is on the mean of 9 frames), the fitted gradient
+// within 2% (its tolerance), the surface within a spacing of where it was seeded, and the stir
+// under 1.5% of U = sqrt(2 g H) (measured 0.7-1%). The default walls read 1.8 times hydrostatic in
+// the floor layer and 10% steep (above).
+TEST(Dfsph, TankWithPushingWallsIsHydrostaticInEveryLayer) {
+    ::setenv("WEIR_DFSPH_WALLS", "extrapolated", 1);
+    const Scene scene = dfsphScene(R"(
+        "container": {"min": [0, 0, 0], "max": [0.2, 0.3, 0.1]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.2, 0.1]}],
+        "particles": {"spacing": 0.01},
+        "time": {"duration": 0.5, "frameRate": 10})");
+    SetupReport report;
+    auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, &report));
+    ::unsetenv("WEIR_DFSPH_WALLS");  // read when the method is made
+    sim->computeDensity();
+    HostParticles p;
+    for (int frame = 1; frame <= 3; ++frame) {
+        sim->advanceTo(0.1 * frame);
+        ASSERT_EQ(sim->fault().code, 0) << describeFault(sim->fault(), sim->params());
+        sim->download(p);
+        const Compression c = compressionOf(p, scene.restDensity);
+        EXPECT_LT(c.mean, 1e-3) << "frame " << frame;
+        EXPECT_LT(c.max, 1e-2) << "frame " << frame;
+    }
+    double squares = 0, top = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        squares +=
+            double(p.vx[i]) * p.vx[i] + double(p.vy[i]) * p.vy[i] + double(p.vz[i]) * p.vz[i];
+        top = std::max(top, double(p.y[i]));
+    }
+    const double rms = std::sqrt(squares / double(p.size()));
+    const double d = 0.01, surface = 0.2, g = 9.81;
+    std::cout << "tank with pushing walls: RMS speed " << rms << " m/s, top particle at " << top
+              << " m (seeded " << surface - 0.5 * d << ")\n";
+    EXPECT_LT(rms, 0.015 * report.expectedSpeed);
+    EXPECT_NEAR(top, surface - 0.5 * d, d);
+    std::vector<double> sum(20, 0.0), ySum(20, 0.0);
+    std::vector<int> count(20, 0);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const int layer = std::clamp(int(p.y[i] / d), 0, 19);
+        sum[std::size_t(layer)] += p.p[i];
+        ySum[std::size_t(layer)] += p.y[i];
+        ++count[std::size_t(layer)];
+    }
+    double sy = 0, sp = 0, syy = 0, syp = 0;
+    int used = 0;
+    for (int layer = 0; layer <= 15; ++layer) {
+        ASSERT_GT(count[std::size_t(layer)], 0);
+        const double y = ySum[std::size_t(layer)] / count[std::size_t(layer)];
+        const double pressure = sum[std::size_t(layer)] / count[std::size_t(layer)];
+        const double hydrostatic = scene.restDensity * g * (surface - y);
+        EXPECT_NEAR(pressure / hydrostatic, 1.0, 0.06) << "layer " << layer << " at y = " << y;
+        sy += y, sp += pressure, syy += y * y, syp += y * pressure;
+        ++used;
+    }
+    const double slope = (used * syp - sy * sp) / (used * syy - sy * sy);
+    EXPECT_NEAR(-slope / (scene.restDensity * g), 1.0, 0.02);
 }
 
 // The dam break: every frame within the solver's tolerance (mean compression under 0.1%), the
