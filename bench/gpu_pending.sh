@@ -22,6 +22,9 @@
 #            the run to 0.3 s with a ply frame every 0.01 s, then bench/dfsph_spray.py
 #   largest  issues 15 and 17: the largest runs with today's physics: weir bench with delta-SPH
 #            at 1B (700M if 1B does not fit) and DFSPH at 500M, 2 timed steps each, no settling
+#   walls    issue 15: DFSPH's pushing walls (WEIR_DFSPH_WALLS=extrapolated, 125adc2, CPU only so
+#            far): the DFSPH CUDA tests with it, the hydrostatic tank on the GPU at 48 and 96 over
+#            the depth, and the shipped dam break at 1M to 0.3 s beside the default
 # Results under $OUT (default gpu-out). Usage: PARTS="build test live" bash bench/gpu_pending.sh
 set -uo pipefail
 out=$(realpath -m "${OUT:-gpu-out}")
@@ -98,6 +101,24 @@ PY
         --spacing "$spacing" >"$out/spray10m.txt" 2>&1
     echo "spray analysis: exit $?"; head -n 60 "$out/spray10m.txt"
 fi
+if has walls; then
+    WEIR_DFSPH_WALLS=extrapolated ./build-gpu/weir_tests --gtest_filter='DfsphCuda.*:CudaPeriodic.*Dfsph*' \
+        >"$out/walls-cuda-tests.log" 2>&1
+    echo "pushing walls, CUDA tests: exit $?"; grep -E "OK|FAILED" "$out/walls-cuda-tests.log"
+    for r in 48 96; do
+        WEIR_DFSPH_WALLS=extrapolated timeout 240 ./build-gpu/weir validate --backend cuda \
+            --solver dfsph --cases hydrostatic --tank-resolution $r --no-plot -o "$out/walls-tank-$r" \
+            >"$out/walls-tank-$r.log" 2>&1
+        echo "pushing walls, tank $r: exit $?"; grep -E "PASS|FAIL" "$out/walls-tank-$r.log"
+    done
+    for walls in own extrapolated; do
+        WEIR_DFSPH_WALLS=$walls timeout 200 ./build-gpu/weir run dam_break --solver dfsph \
+            --particles 1M --frames 9 --format ply --overwrite -o /tmp/walls-$walls \
+            >"$out/walls-dam-$walls.log" 2>&1
+        echo "dam break 1M, walls $walls: exit $?"; grep -E "^weir: done|frame 9/" "$out/walls-dam-$walls.log"
+    done
+fi
+
 if has largest; then
     big() {  # label, seconds, bench arguments
         local label=$1 limit=$2
