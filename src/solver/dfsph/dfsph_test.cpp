@@ -42,12 +42,47 @@ Compression compressionOf(const HostParticles& p, double restDensity) {
     return c;
 }
 
-TEST(Dfsph, TankAtRestHoldsRestDensityAndStaysAtRest) {
-    const Scene scene = dfsphScene(R"(
+// The tank at rest of the tests below: water 0.2 m deep, d = 1 cm, walls of boundary particles.
+Scene tankScene() {
+    return dfsphScene(R"(
         "container": {"min": [0, 0, 0], "max": [0.2, 0.3, 0.1]},
         "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.2, 0.1]}],
         "particles": {"spacing": 0.01},
         "time": {"duration": 0.5, "frameRate": 10})");
+}
+
+// The tanks below: 1 cm layers of a tank of water 0.2 m deep. Each layer's mean pressure from
+// `first` to `last` against rho0 g (depth) within `layerTolerance` (relative), and the pressure's
+// fitted gradient against rho0 g within `gradientTolerance`.
+void expectHydrostaticLayers(const HostParticles& p, double restDensity, int first, int last,
+                             double layerTolerance, double gradientTolerance) {
+    const double d = 0.01, top = 0.2, g = 9.81;
+    std::vector<double> sum(20, 0.0), ySum(20, 0.0);
+    std::vector<int> count(20, 0);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const int layer = std::clamp(int(p.y[i] / d), 0, 19);
+        sum[std::size_t(layer)] += p.p[i];
+        ySum[std::size_t(layer)] += p.y[i];
+        ++count[std::size_t(layer)];
+    }
+    double sy = 0, sp = 0, syy = 0, syp = 0;
+    int used = 0;
+    for (int layer = first; layer <= last; ++layer) {
+        ASSERT_GT(count[std::size_t(layer)], 0);
+        const double y = ySum[std::size_t(layer)] / count[std::size_t(layer)];
+        const double pressure = sum[std::size_t(layer)] / count[std::size_t(layer)];
+        const double hydrostatic = restDensity * g * (top - y);
+        EXPECT_NEAR(pressure / hydrostatic, 1.0, layerTolerance)
+            << "layer " << layer << " at y = " << y;
+        sy += y, sp += pressure, syy += y * y, syp += y * pressure;
+        ++used;
+    }
+    const double slope = (used * syp - sy * sp) / (used * syy - sy * sy);
+    EXPECT_NEAR(-slope / (restDensity * g), 1.0, gradientTolerance);
+}
+
+TEST(Dfsph, TankAtRestHoldsRestDensityAndStaysAtRest) {
+    const Scene scene = tankScene();
     SetupReport report;
     auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, &report));
     ASSERT_EQ(sim->method(), "dfsph");
@@ -109,28 +144,7 @@ TEST(Dfsph, TankAtRestHoldsRestDensityAndStaysAtRest) {
     // within 20% (fitted). Measured: the fitted gradient 1.155 rho0 g (WCSPH's tanks read 8-10%
     // steep before the kernel gradient's lattice correction, docs/physics.md), the floor layer
     // pressed onto the wall, the top layer light by summation.
-    const double d = 0.01, top = 0.2, g = 9.81;
-    std::vector<double> sum(20, 0.0), ySum(20, 0.0);
-    std::vector<int> count(20, 0);
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        const int layer = std::clamp(int(p.y[i] / d), 0, 19);
-        sum[std::size_t(layer)] += p.p[i];
-        ySum[std::size_t(layer)] += p.y[i];
-        ++count[std::size_t(layer)];
-    }
-    double sy = 0, sp = 0, syy = 0, syp = 0;
-    int used = 0;
-    for (int layer = 2; layer <= 16; ++layer) {
-        ASSERT_GT(count[std::size_t(layer)], 0);
-        const double y = ySum[std::size_t(layer)] / count[std::size_t(layer)];
-        const double pressure = sum[std::size_t(layer)] / count[std::size_t(layer)];
-        const double hydrostatic = scene.restDensity * g * (top - y);
-        EXPECT_NEAR(pressure / hydrostatic, 1.0, 0.2) << "layer " << layer << " at y = " << y;
-        sy += y, sp += pressure, syy += y * y, syp += y * pressure;
-        ++used;
-    }
-    const double slope = (used * syp - sy * sp) / (used * syy - sy * sy);
-    EXPECT_NEAR(-slope / (scene.restDensity * g), 1.0, 0.2);
+    expectHydrostaticLayers(p, scene.restDensity, 2, 16, 0.2, 0.2);
 }
 
 // WEIR_DFSPH_WALLS=extrapolated (experimental): walls that push back as the fluid near them does,
@@ -143,11 +157,7 @@ TEST(Dfsph, TankAtRestHoldsRestDensityAndStaysAtRest) {
 // the floor layer and 10% steep (above).
 TEST(Dfsph, TankWithPushingWallsIsHydrostaticInEveryLayer) {
     ::setenv("WEIR_DFSPH_WALLS", "extrapolated", 1);
-    const Scene scene = dfsphScene(R"(
-        "container": {"min": [0, 0, 0], "max": [0.2, 0.3, 0.1]},
-        "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.2, 0.1]}],
-        "particles": {"spacing": 0.01},
-        "time": {"duration": 0.5, "frameRate": 10})");
+    const Scene scene = tankScene();
     SetupReport report;
     auto sim = makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, &report));
     ::unsetenv("WEIR_DFSPH_WALLS");  // read when the method is made
@@ -168,32 +178,12 @@ TEST(Dfsph, TankWithPushingWallsIsHydrostaticInEveryLayer) {
         top = std::max(top, double(p.y[i]));
     }
     const double rms = std::sqrt(squares / double(p.size()));
-    const double d = 0.01, surface = 0.2, g = 9.81;
+    const double d = 0.01, surface = 0.2;
     std::cout << "tank with pushing walls: RMS speed " << rms << " m/s, top particle at " << top
               << " m (seeded " << surface - 0.5 * d << ")\n";
     EXPECT_LT(rms, 0.015 * report.expectedSpeed);
     EXPECT_NEAR(top, surface - 0.5 * d, d);
-    std::vector<double> sum(20, 0.0), ySum(20, 0.0);
-    std::vector<int> count(20, 0);
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        const int layer = std::clamp(int(p.y[i] / d), 0, 19);
-        sum[std::size_t(layer)] += p.p[i];
-        ySum[std::size_t(layer)] += p.y[i];
-        ++count[std::size_t(layer)];
-    }
-    double sy = 0, sp = 0, syy = 0, syp = 0;
-    int used = 0;
-    for (int layer = 0; layer <= 15; ++layer) {
-        ASSERT_GT(count[std::size_t(layer)], 0);
-        const double y = ySum[std::size_t(layer)] / count[std::size_t(layer)];
-        const double pressure = sum[std::size_t(layer)] / count[std::size_t(layer)];
-        const double hydrostatic = scene.restDensity * g * (surface - y);
-        EXPECT_NEAR(pressure / hydrostatic, 1.0, 0.06) << "layer " << layer << " at y = " << y;
-        sy += y, sp += pressure, syy += y * y, syp += y * pressure;
-        ++used;
-    }
-    const double slope = (used * syp - sy * sp) / (used * syy - sy * sy);
-    EXPECT_NEAR(-slope / (scene.restDensity * g), 1.0, 0.02);
+    expectHydrostaticLayers(p, scene.restDensity, 0, 15, 0.06, 0.02);
 }
 
 // The dam break: every frame within the solver's tolerance (mean compression under 0.1%), the
