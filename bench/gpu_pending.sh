@@ -1,30 +1,26 @@
 #!/usr/bin/env bash
-# What is left to run on a GPU, in parts (PARTS, default all). Updated 2026-12-05 (second session,
-# no GPU lent; the first session that day ran the build, the tests, the live look's benchmark and
-# five of the seven 1M sweep scenes):
+# What is left to run on a GPU, in parts (PARTS, default all). Updated 2026-12-05 (third session:
+# an H100 ran build, test, dfsph, walls, spray and the sweep at ab95436; bench/results/h100-2026-12-05b):
 #   build    weir, weir_tests, weir_water_view_bench (Release, sm_90) into build-gpu
-#   test     every CUDA test (all 33 passed at fcc5913). Not yet run on a GPU: the water look's
-#            path offset for motion blur (168b55e), the device loop of a captured graph
-#            (CudaLoops.*) and DFSPH's graph replay (DfsphCuda.GraphReplayGivesTheStepsRunOneAtATime,
-#            c09466a and after)
-#   dfsph    DFSPH's step replayed as a graph (WEIR_DFSPH_GRAPH=1, opt-in until this has run)
-#            against the host-polled step, weir bench at 100k and 1M with WCSPH beside; if the
-#            graph wins and the test passes, make it the default (solver/dfsph/dfsph.h capturable)
+#   test     every CUDA test (all 36 passed at ab95436, the graph loops among them)
+#   dfsph    DFSPH's step replayed as a graph (the default since it passed there) against the
+#            host-polled step (WEIR_DFSPH_GRAPH=0), weir bench at 100k and 1M with WCSPH beside
 #   live     weir_water_view_bench at 1M (99 frames/s at fcc5913), then `weir render --look water`
 #            timed on a 1M frame; this needs a weir built with rendering: run bench/gpu_render.sh
 #            with build-kit/weir and .gl/ carried (see its header) for the offline timings
-#   sweep    issue 14: the delta-SPH stability sweep at 1M, h = 3 d, for the scenes not yet run
-#            there (SWEEP_SCENES: viscous_pour and piston_wave_maker; hose_filling_glass alone took
-#            288 s), then the simple walls at 100k (WEIR_SWEEP_SIMPLE_DELTA; 27 cases:
-#            SIMPLE_RATIOS=1.5 etc. splits them over calls of 10 minutes)
+#   sweep    issue 14: the delta-SPH stability sweep at 1M, h = 3 d, for the scene not yet run
+#            there (SWEEP_SCENES: viscous_pour; it needs more than 265 s), then the simple walls
+#            at 100k (WEIR_SWEEP_SIMPLE_DELTA; 27 cases, 6 blew up at ab95436)
 # Parts not in the default set (a call of their own each):
-#   spray    issue 15: where the 10M DFSPH dam break's 7-11 m/s spray comes from (it sets the dt):
-#            the run to 0.3 s with a ply frame every 0.01 s, then bench/dfsph_spray.py
+#   spray    issue 15: the 10M DFSPH dam break to 0.3 s with a ply frame every 0.01 s, then
+#            bench/dfsph_spray.py (at ab95436 it blew up at 0.07 s: see the results' README)
 #   largest  issues 15 and 17: the largest runs with today's physics: weir bench with delta-SPH
 #            at 1B (700M if 1B does not fit) and DFSPH at 500M, 2 timed steps each, no settling
-#   walls    issue 15: DFSPH's pushing walls (WEIR_DFSPH_WALLS=extrapolated, 125adc2, CPU only so
-#            far): the DFSPH CUDA tests with it, the hydrostatic tank on the GPU at 48 and 96 over
-#            the depth, and the shipped dam break at 1M to 0.3 s beside the default
+#            (an H200's memory)
+#   walls    issue 15: DFSPH's pushing walls (WEIR_DFSPH_WALLS=extrapolated): the DFSPH CUDA
+#            tests with it, the hydrostatic tank on the GPU at 48 and 96 over the depth, and the
+#            shipped dam break at 1M to 0.3 s beside the default (at ab95436 the GPU tank at 48
+#            blew up at 0.09 s where the CPU passes it)
 # Results under $OUT (default gpu-out). Usage: PARTS="build test live" bash bench/gpu_pending.sh
 set -uo pipefail
 out=$(realpath -m "${OUT:-gpu-out}")

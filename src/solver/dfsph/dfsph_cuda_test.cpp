@@ -77,9 +77,7 @@ TEST(DfsphCuda, GraphReplayGivesTheStepsRunOneAtATime) {
     replayed->computeDensity();
     stepped->computeDensity();
     const int steps = 40;
-    ::setenv("WEIR_DFSPH_GRAPH", "1", 1);  // the graph is opt-in until it has run on a GPU
-    replayed->advance(steps);              // one step, then graphs of two steps
-    ::unsetenv("WEIR_DFSPH_GRAPH");
+    replayed->advance(steps);  // one step, then graphs of two steps
     for (int k = 0; k < steps; ++k) {
         stepped->advance(1);  // never captured
     }
