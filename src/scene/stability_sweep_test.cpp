@@ -123,8 +123,10 @@ std::vector<std::string> listItems(const char* text) {
 // simple walls is not held to the sweep: it failed it while the walls' push was not the gradient of
 // their density share (CPU, 600 particles: the 99.9th percentile of compression 24% at h = 3d, 38%
 // at 1.5d in splash_on_sphere; H200, 100k: 9 of 27 cases blew up, 7 of them at h = 1.5d); since,
-// its 36 CPU cases pass (worst single particle +15.5%), but the GPU sweep has not been re-run, and
-// set-up still warns (scene/setup.cpp). WEIR_SWEEP_SIMPLE_DELTA=1 runs those cases too.
+// its 36 CPU cases pass (worst single particle +15.5%), but on an H100 at 100k 6 of 27 still blew
+// up (ab95436: 4 at h = 1.5 d, compressed past 1.5 rho0 in splashes under the lid; 2 at 3 d,
+// particles pressed onto one point at a wall), and set-up still warns (scene/setup.cpp).
+// WEIR_SWEEP_SIMPLE_DELTA=1 runs those cases too.
 // WEIR_SWEEP_SIZES (e.g. "100000,1000000") runs every size at every ratio instead;
 // WEIR_SWEEP_MODELS (e.g. "delta-sph") only the models listed; WEIR_SWEEP_RATIOS (e.g. "3") only
 // the smoothing ratios listed, of those the model is held to.
