@@ -99,6 +99,7 @@ struct SphParams {
     // divergence-free one does (0: that solve off); sweeps a solve may take at most.
     Real densityTolerance = 0;
     Real divergenceTolerance = 0;
+    Real worstDensityTolerance = 0;  // ... and the largest one particle's may keep (0: any)
     int maxSolverIterations = 0;
     Real minFactorDenominator = 0;  // the least denominator of the factor alpha, kg^2/m^8
 };

@@ -1105,13 +1105,15 @@ Scene parseSceneNamed(const std::string& jsonText, const std::string& source,
     // After the model and the solver, whose default it follows.
     scene.smoothingRatio = particles.number("smoothingRatio", between(1.2, 5),
                                             defaultSmoothingRatio(scene.model, scene.solver));
-    FieldReader dfsph =
-        top.object("dfsph", {"densityError", "divergenceError", "maxSweeps", "cfl"});
+    FieldReader dfsph = top.object(
+        "dfsph", {"densityError", "divergenceError", "worstDensityError", "maxSweeps", "cfl"});
     Scene::DfsphSettings& settings = scene.dfsph;
     settings.densityErrorPercent =
         dfsph.number("densityError", positiveUpTo(10), settings.densityErrorPercent);
     settings.divergenceErrorPercent =
         dfsph.number("divergenceError", between(0, 100), settings.divergenceErrorPercent);
+    settings.worstDensityErrorPercent =
+        dfsph.number("worstDensityError", between(0, 100), settings.worstDensityErrorPercent);
     Range sweeps = between(2, 10000);
     sweeps.integer = true;
     settings.maxSweeps = int(dfsph.number("maxSweeps", sweeps, settings.maxSweeps));

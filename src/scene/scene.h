@@ -216,6 +216,9 @@ struct Scene {
         double densityErrorPercent = 0.01;    // "densityError": mean |rho - rho0| / rho0, %
         double divergenceErrorPercent = 0.1;  // "divergenceError": mean dt |Drho/Dt| / rho0, %;
                                               // 0: no divergence-free solve
+        double worstDensityErrorPercent = 1;  // "worstDensityError": the constant-density solve
+                                              // also sweeps while one particle's error is past
+                                              // it, %; 0: the mean alone
         int maxSweeps = 100;                  // "maxSweeps": the most Jacobi sweeps of a solve
         double cfl = 0.4;                     // "cfl": dt <= cfl d / max |v|
     } dfsph;

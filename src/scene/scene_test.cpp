@@ -405,10 +405,11 @@ const BadCase kBadCases[] = {
     {"/dfsph/densityError", "0", "'dfsph.densityError'", "is 0", "a number > 0 and <= 10"},
     {"/dfsph/divergenceError", "-1", "'dfsph.divergenceError'", "-1", "a number in [0, 100]"},
     {"/dfsph/maxSweeps", "1", "'dfsph.maxSweeps'", "is 1", "an integer in [2, 10000]"},
+    {"/dfsph/worstDensityError", "-1", "'dfsph.worstDensityError'", "-1", "a number in [0, 100]"},
     {"/dfsph/maxSweeps", "20.5", "'dfsph.maxSweeps'", "20.5", "an integer in [2, 10000]"},
     {"/dfsph/cfl", "3", "'dfsph.cfl'", "is 3", "a number > 0 and <= 2"},
     {"/dfsph/tolerance", "1", "'dfsph.tolerance'", "an unknown key",
-     "one of: densityError, divergenceError, maxSweeps, cfl"},
+     "one of: densityError, divergenceError, worstDensityError, maxSweeps, cfl"},
 };
 
 TEST(Scene, EachBadValueNamesFileFieldValueAndAllowedRange) {

@@ -686,8 +686,12 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
                        "% of rho0 per step) and "
                  : std::string("no divergence-free solve (dfsph.divergenceError 0) and ")) +
             "a constant-density solve (mean density error under " +
-            fmt(scene.dfsph.densityErrorPercent) + "%), at most " +
-            std::to_string(scene.dfsph.maxSweeps) + " Jacobi sweeps each (scene \"dfsph\")");
+            fmt(scene.dfsph.densityErrorPercent) + "%" +
+            (settings.worstDensityErrorPercent > 0
+                 ? ", every particle's under " + fmt(settings.worstDensityErrorPercent) + "%"
+                 : std::string()) +
+            "), at most " + std::to_string(scene.dfsph.maxSweeps) +
+            " Jacobi sweeps each (scene \"dfsph\")");
     }
     if (adaptive && dfsph) {
         say("time step adaptive, recomputed every step on the device: min(" + fmt(scene.dfsph.cfl) +
@@ -780,6 +784,7 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             p.cflNumber = Real(scene.dfsph.cfl * d / h);
             p.densityTolerance = Real(scene.dfsph.densityErrorPercent / 100);
             p.divergenceTolerance = Real(scene.dfsph.divergenceErrorPercent / 100);
+            p.worstDensityTolerance = Real(scene.dfsph.worstDensityErrorPercent / 100);
             p.maxSolverIterations = scene.dfsph.maxSweeps;
             // The solves predict the summed density's change by its rate: the rate takes the
             // gradient of the very kernel the density sums (no lattice-moment correction), so

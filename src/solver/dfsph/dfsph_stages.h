@@ -34,6 +34,7 @@ namespace weir {
 // that the iterations test convergence with no host round trip; and what a frame's log reports.
 struct DfsphMonitor {
     float errorSum;  // this iteration's sum of per-particle errors (the backend's reduction)
+    float errorMax;  // ... and the largest (the backend's reduction; the density solve only)
     int done;        // this solve has converged or run out of iterations
     int iterations;  // velocity updates of this solve so far
     // Since the last read by the host (one frame's worth):
@@ -313,15 +314,19 @@ WEIR_HD inline void dfsphWarmStartAt(Index i, const Real4* vel, bool divergence,
     accumulated[i] = start;
 }
 
-// One thread, after the errors' sum: the iteration's mean error against the tolerance. The solve
-// is done once it is under it after at least minIterations updates, or at maxIterations.
+// One thread, after the errors' sum (and largest): the iteration's mean error against the
+// tolerance and, where worstTolerance > 0, its largest against that. The solve is done once both
+// are under them after at least minIterations updates, or at maxIterations.
 WEIR_HD inline void dfsphCheck(DfsphMonitor* monitor, Index count, Real tolerance,
-                               int minIterations, int maxIterations) {
+                               Real worstTolerance, int minIterations, int maxIterations) {
     if (monitor->done != 0) {
         return;
     }
     const float mean = count > 0 ? monitor->errorSum / float(count) : 0.0f;
-    const bool converged = mean <= float(tolerance) && monitor->iterations >= minIterations;
+    const bool converged =
+        mean <= float(tolerance) &&
+        (worstTolerance <= Real(0) || monitor->errorMax <= float(worstTolerance)) &&
+        monitor->iterations >= minIterations;
     if (converged || monitor->iterations >= maxIterations) {
         monitor->done = 1;
         monitor->totalIterations += monitor->iterations;

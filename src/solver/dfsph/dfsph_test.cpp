@@ -277,12 +277,14 @@ TEST(Dfsph, SceneSettingsReachTheSolver) {
     const SimulationSetup defaults = buildSetup(dfsphScene(body), {}, nullptr);
     EXPECT_NEAR(double(defaults.params.densityTolerance), 1e-4, 1e-9);
     EXPECT_NEAR(double(defaults.params.divergenceTolerance), 1e-3, 1e-9);
+    EXPECT_NEAR(double(defaults.params.worstDensityTolerance), 1e-2, 1e-9);
     EXPECT_EQ(defaults.params.maxSolverIterations, 100);
     const SimulationSetup set =
         buildSetup(dfsphScene(body + R"(, "dfsph": {"densityError": 0.05, "divergenceError": 0,
-                                         "maxSweeps": 40, "cfl": 0.2})"),
+                                         "worstDensityError": 0, "maxSweeps": 40, "cfl": 0.2})"),
                    {}, nullptr);
     EXPECT_NEAR(double(set.params.densityTolerance), 5e-4, 1e-9);
+    EXPECT_EQ(double(set.params.worstDensityTolerance), 0.0);
     EXPECT_EQ(double(set.params.divergenceTolerance), 0.0);
     EXPECT_EQ(set.params.maxSolverIterations, 40);
     EXPECT_NEAR(double(set.params.cflNumber), 0.5 * double(defaults.params.cflNumber), 1e-6);
@@ -294,6 +296,53 @@ TEST(Dfsph, SceneSettingsReachTheSolver) {
     EXPECT_EQ(report.divergence.solves, 0);
     EXPECT_EQ(report.density.solves, 3);
     EXPECT_LE(report.density.maxIterations, 40);
+}
+
+// The constant-density solve also sweeps while one particle's error is past
+// dfsph.worstDensityError (a mean over millions of particles hides a few compressed ones: a 10M
+// dam break blew up at a column's foot with the mean met in 2 sweeps a step). With a loose mean
+// (1%, met at once: 2 sweeps a step) the worst particle's bound is what keeps the solve going:
+// more sweeps, and each solve still ends converged. (The frames' largest compression is not
+// compared: the two runs part ways, and at 0.05 s it read 0.15% and 0.18%.)
+TEST(Dfsph, WorstParticleKeepsTheSolveGoing) {
+    const std::string body = R"(
+        "container": {"min": [0, 0, 0], "max": [0.6, 0.4, 0.1]},
+        "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.3, 0.1]}],
+        "particles": {"spacing": 0.0125},
+        "time": {"duration": 0.1, "frameRate": 20},
+        "dfsph": {"densityError": 1, "worstDensityError": )";
+    struct Outcome {
+        long long sweeps = 0, steps = 0;
+        int unconverged = 0;
+        double worstCompression = 0;
+    };
+    auto run = [&](const std::string& worst) {
+        const Scene scene = dfsphScene(body + worst + "}");
+        auto sim =
+            makeSimulation(Backend::Cpu, NeighbourMode::Auto, buildSetup(scene, {}, nullptr));
+        sim->computeDensity();
+        Outcome out;
+        HostParticles p;
+        for (int frame = 1; frame <= 2; ++frame) {
+            sim->advanceTo(0.05 * frame);
+            EXPECT_EQ(sim->fault().code, 0) << describeFault(sim->fault(), sim->params());
+            const SolverReport report = sim->takeSolverReport();
+            out.sweeps += report.density.iterations;
+            out.unconverged += report.density.unconverged;
+            sim->download(p);
+            out.worstCompression =
+                std::max(out.worstCompression, compressionOf(p, scene.restDensity).max);
+        }
+        out.steps = sim->stepCount();
+        return out;
+    };
+    const Outcome loose = run("0"), bound = run("0.25");
+    std::cout << "density sweeps: " << loose.sweeps << " with the mean alone, " << bound.sweeps
+              << " with every particle within 0.25%; worst frame compression "
+              << loose.worstCompression << ", " << bound.worstCompression << "\n";
+    EXPECT_GT(bound.sweeps, loose.sweeps + loose.sweeps / 2);
+    EXPECT_EQ(loose.sweeps, 2 * loose.steps);  // the least a solve takes
+    EXPECT_EQ(bound.unconverged, 0);
 }
 
 TEST(Dfsph, UnsupportedCombinationsFailNamingTheField) {
