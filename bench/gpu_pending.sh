@@ -13,7 +13,10 @@
 #            at 100k (WEIR_SWEEP_SIMPLE_DELTA; 27 cases, 6 blew up at ab95436)
 # Parts not in the default set (a call of their own each):
 #   spray    issue 15: the 10M DFSPH dam break to 0.3 s with a ply frame every 0.01 s, then
-#            bench/dfsph_spray.py (at ab95436 it blew up at 0.07 s: see the results' README)
+#            bench/dfsph_spray.py. At ab95436 it blew up at 0.07 s, a regression since 68aab21
+#            (bench/results/h200-2026-12-05b-10m-regression); d784914's worst-particle bound
+#            (dfsph.worstDensityError 1%) is aimed at it: run this first; if it still blows up,
+#            bisect the commits that README lists with its call.sh (git archive each here)
 #   largest  issues 15 and 17: the largest runs with today's physics: weir bench with delta-SPH
 #            at 1B (700M if 1B does not fit) and DFSPH at 500M, 2 timed steps each, no settling
 #            (an H200's memory)
