@@ -282,7 +282,6 @@ class Dfsph final : public PressureSolver<Exec> {
         Real* wallTotal = walls ? wallStiffness_.data() : nullptr;
         Real* wallChange = walls ? wallStiffnessChange_.data() : nullptr;
         const Real* wallShepardSum = walls ? wallShepardSum_.data() : nullptr;
-        const Real* appliedWallChange = wallChange;
         auto extrapolateToWalls = [&] {
             if (walls) {
                 s.exec.forEach(boundaryCount, [=] WEIR_HD(Index b) {
@@ -301,8 +300,7 @@ class Dfsph final : public PressureSolver<Exec> {
         if (share > Real(0)) {
             extrapolateToWalls();
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
-                dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor,
-                              appliedWallChange);
+                dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor, wallChange);
             });
             copyVelocitiesToGhosts(s, vel);
         }
@@ -323,8 +321,7 @@ class Dfsph final : public PressureSolver<Exec> {
                 dfsphCheck(monitor, owned, tolerance, worst, minimum, maximum);
             });
             s.exec.forEach(n, [=] WEIR_HD(Index i) {
-                dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor,
-                              appliedWallChange);
+                dfsphUpdateAt(i, pv, nb, params, vel, kappaOverRho, clock, monitor, wallChange);
             });
             copyVelocitiesToGhosts(s, vel);
         });
@@ -518,8 +515,7 @@ class Dfsph final : public PressureSolver<Exec> {
         const StepClock* clock = s.clock;
         s.exec.forEach(s.store.count(), [=] WEIR_HD(Index i) {
             const Real applied = clock->dt > Real(0) ? divergence[i] / clock->dt : Real(0);
-            const Real out =
-                applied < density[i] ? (applied > Real(0) ? applied : Real(0)) : density[i];
+            const Real out = Real(fmin(fmax(applied, Real(0)), density[i]));
             density[i] -= out;
             taken[i] = out;
         });
