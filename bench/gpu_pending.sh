@@ -13,13 +13,11 @@
 #            at 100k (WEIR_SWEEP_SIMPLE_DELTA; 27 cases, 6 blew up at ab95436)
 # Parts not in the default set (a call of their own each):
 #   spray    issue 15: the 10M DFSPH dam break to 0.3 s with a ply frame every 0.01 s, then
-#            bench/dfsph_spray.py. At ab95436 it blew up at 0.07 s, a regression since 68aab21
-#            (bench/results/h200-2026-12-05b-10m-regression); d784914's worst-particle bound
-#            (dfsph.worstDensityError 1%) is aimed at it: run this first; if it still blows up,
-#            bisect the commits that README lists with its call.sh (git archive each here)
+#            bench/dfsph_spray.py. At 33d5b87 on an H100 it ran (worst +1.61%, 1640 steps; 30
+#            particles kicked out at a side wall; bench/results/h100-2026-12-05c)
 #   largest  issues 15 and 17: the largest runs with today's physics: weir bench with delta-SPH
 #            at 1B (700M if 1B does not fit) and DFSPH at 500M, 2 timed steps each, no settling
-#            (an H200's memory)
+#            (an H200's memory; DFSPH at 500M ran on an H100 at 33d5b87: 126 B a particle)
 #   walls    issue 15: DFSPH's pushing walls (WEIR_DFSPH_WALLS=extrapolated): the DFSPH CUDA
 #            tests with it, the hydrostatic tank on the GPU at 48 and 96 over the depth, and the
 #            shipped dam break at 1M to 0.3 s beside the default (at ab95436 the GPU tank at 48
