@@ -301,6 +301,7 @@ int benchCommand(const BenchOptions& options, SpriteDrawTimer* spriteTimer) {
                 sim->synchronize();
                 sim->setTiming(true);
                 sim->clearStageTimes();
+                sim->takeSolverReport();  // the timed steps' sweeps alone, from here
                 sim->advance(options.steps);
                 sim->synchronize();
                 const StageTimes& times = sim->stageTimes();
@@ -347,6 +348,20 @@ int benchCommand(const BenchOptions& options, SpriteDrawTimer* spriteTimer) {
                         result["wallSecondsPerSimulatedSecond"] = wallSeconds / simulated;
                     }
                 }
+                // An iterative solver's sweeps over every timed step (DFSPH): what a step's time
+                // is made of, and how hard the flow is for the solves at this size.
+                const SolverReport solves = sim->takeSolverReport();
+                if (solves.iterative && solves.density.solves > 0) {
+                    auto perStep = [](const SolveReport& r) {
+                        return r.solves > 0 ? double(r.iterations) / r.solves : 0.0;
+                    };
+                    result["densitySweepsPerStep"] = perStep(solves.density);
+                    result["densitySweepsMax"] = solves.density.maxIterations;
+                    result["divergenceSweepsPerStep"] = perStep(solves.divergence);
+                    result["divergenceSweepsMax"] = solves.divergence.maxIterations;
+                    result["solvesAtSweepLimit"] =
+                        solves.density.unconverged + solves.divergence.unconverged;
+                }
                 // Throughput; on the CPU also per core, to show how the backend scales.
                 const double stepMs = result.value("stepMs", total);
                 result["particleStepsPerSecond"] = double(n) * 1000.0 / stepMs;
@@ -384,6 +399,14 @@ int benchCommand(const BenchOptions& options, SpriteDrawTimer* spriteTimer) {
                               << fixed(result["particleStepsPerSecondPerCore"].get<double>() / 1e6,
                                        3)
                               << " M per core, " << result["threads"].get<int>() << " threads)";
+                }
+                if (result.contains("densitySweepsPerStep")) {
+                    std::cerr << ", density solve "
+                              << fixed(result["densitySweepsPerStep"].get<double>(), 2)
+                              << " sweeps a step (max " << result["densitySweepsMax"].get<int>()
+                              << "), divergence "
+                              << fixed(result["divergenceSweepsPerStep"].get<double>(), 2)
+                              << " (max " << result["divergenceSweepsMax"].get<int>() << ")";
                 }
                 std::cerr << "\n";
                 run["columns"][column.name] = result;

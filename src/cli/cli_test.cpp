@@ -532,6 +532,15 @@ TEST_F(Cli, BenchGivesEachSolversTimePerSimulatedSecond) {
                 EXPECT_GT(c["stages"][stage].get<double>(), 0.0) << stage;
             }
             EXPECT_TRUE(contains(run.output, "Constant-density solve")) << run.output;
+            // The sweeps of every timed step: a density solve takes at least 2, at most 100.
+            ASSERT_TRUE(c.contains("densitySweepsPerStep")) << c.dump();
+            EXPECT_GE(c["densitySweepsPerStep"].get<double>(), 2.0);
+            EXPECT_LE(c["densitySweepsMax"].get<int>(), 100);
+            EXPECT_GE(c["densitySweepsMax"].get<double>(), c["densitySweepsPerStep"].get<double>());
+            EXPECT_GE(c["divergenceSweepsPerStep"].get<double>(), 1.0);
+            EXPECT_TRUE(contains(run.output, "sweeps a step (max ")) << run.output;
+        } else {
+            EXPECT_FALSE(c.contains("densitySweepsPerStep")) << c.dump();
         }
     }
     EXPECT_GT(perSimulated[0], 0.0);
