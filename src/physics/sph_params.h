@@ -100,6 +100,7 @@ struct SphParams {
     Real densityTolerance = 0;
     Real divergenceTolerance = 0;
     Real worstDensityTolerance = 0;  // ... and the largest one particle's may keep (0: any)
+    bool dfsphSecondOrder = false;   // the density solve predicts the move to second order
     int maxSolverIterations = 0;
     Real minFactorDenominator = 0;  // the least denominator of the factor alpha, kg^2/m^8
 };

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <initializer_list>
 #include <sstream>
+#include <string>
 #include <utility>
 
 #include "core/exec_cpu.h"
@@ -785,6 +787,10 @@ SimulationSetup buildSetup(const Scene& scene, const SetupOptions& options, Setu
             p.densityTolerance = Real(scene.dfsph.densityErrorPercent / 100);
             p.divergenceTolerance = Real(scene.dfsph.divergenceErrorPercent / 100);
             p.worstDensityTolerance = Real(scene.dfsph.worstDensityErrorPercent / 100);
+            // Experimental (solver/dfsph/dfsph_stages.h, dfsphDensityRate): off by default.
+            if (const char* order = std::getenv("WEIR_DFSPH_SECOND_ORDER")) {
+                p.dfsphSecondOrder = std::string(order) == "1";
+            }
             p.maxSolverIterations = scene.dfsph.maxSweeps;
             // The solves predict the summed density's change by its rate: the rate takes the
             // gradient of the very kernel the density sums (no lattice-moment correction), so
