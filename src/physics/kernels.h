@@ -74,6 +74,11 @@ struct WendlandKernel {
         const Real t = Real(1) - r * invH;
         return grad * t * t * t;
     }
+    // dg/dr of gradientFactor (0 <= r < h): the Hessian of W is g I + (dg/dr) r_vec r_vec^T / r.
+    WEIR_HD Real gradientFactorSlope(Real r) const {
+        const Real t = Real(1) - r * invH;
+        return Real(-3) * grad * t * t * invH;
+    }
 };
 
 // Over a cubic lattice of spacing 1 around a site, for Wendland C2 with radius `ratio`:

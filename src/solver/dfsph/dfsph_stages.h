@@ -193,11 +193,9 @@ WEIR_HD inline void dfsphNonPressureAt(Index i, const ParticleView& pv, const Ne
 // (1/2) dx . (grad grad W) dx / ahead = (ahead / 2) (g |u|^2 + g'(r) (r . u)^2 / r).
 WEIR_HD inline Real dfsphSecondOrderRate(const WendlandKernel& k, Real r, const Vec3& rVec,
                                          const Vec3& u, Real ahead) {
-    const Real t = Real(1) - r * k.invH;
-    const Real g = k.grad * t * t * t;
-    const Real gPrime = Real(-3) * k.grad * t * t * k.invH;  // dg/dr
     const Real along = dot(u, rVec);
-    return Real(0.5) * ahead * (g * lengthSquared(u) + gPrime * along * along / r);
+    return Real(0.5) * ahead *
+           (k.gradientFactor(r) * lengthSquared(u) + k.gradientFactorSlope(r) * along * along / r);
 }
 
 // The rate of i's density under velocities `vel`: sum_j m_j (v_i - v_j) . grad W_ij plus the walls'
